@@ -1,0 +1,273 @@
+// Mesh writers. OBJ and PLY are written here rather than through assimp's exporters because ours keep
+// the exact vertex order, the quads and full double precision (shortest round-trip numbers), and add
+// no material files; GLB goes through assimp's glTF 2 exporter.
+#include <assimp/Exporter.hpp>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <unistd.h>
+
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+#include "internal.h"
+
+namespace dresskit {
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& saveable_extensions() {
+  static const std::vector<std::string> ext = {"obj", "ply", "off", "stl", "glb", "gltf", "fbx"};
+  return ext;
+}
+
+namespace {
+
+// Runs write(tmp_path) in a private temporary folder beside the destination, with the destination's
+// file name (so that sidecar files such as a glTF's .bin keep the right name), then moves every file
+// written there into place. On any failure the temporary folder is removed and nothing is left.
+template <typename Write>
+void write_via_temporary(const std::string& path, Write write) {
+  const fs::path destination(path);
+  const fs::path dir = destination.parent_path().empty() ? fs::path(".") : destination.parent_path();
+  std::error_code ec;
+  if (!fs::is_directory(dir, ec)) throw OutputError(path + ": no such directory");
+  const fs::path tmp = dir / (".dresskit-tmp-" + std::to_string(::getpid()) + "-" + destination.filename().string());
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directory(tmp, ec)) throw OutputError(path + ": cannot write: " + ec.message());
+  try {
+    write((tmp / destination.filename()).string());
+    for (const auto& entry : fs::directory_iterator(tmp)) {
+      fs::rename(entry.path(), dir / entry.path().filename(), ec);
+      if (ec) throw OutputError(path + ": cannot write: " + ec.message());
+    }
+    fs::remove(tmp, ec);
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+}
+
+void append_number(std::string& out, double value) {
+  char buf[32];
+  const auto result = std::to_chars(buf, buf + sizeof buf, value);
+  out.append(buf, result.ptr);
+}
+
+void append_int(std::string& out, long value) {
+  char buf[24];
+  const auto result = std::to_chars(buf, buf + sizeof buf, value);
+  out.append(buf, result.ptr);
+}
+
+
+// The faces to write: each quad once (when both of its triangles are in F), the other triangles as
+// they are.
+std::vector<std::vector<int>> output_polygons(const TriangleMesh& m) {
+  std::map<std::array<int, 3>, int> quad_of_triangle;
+  const auto tri_key = detail::directed_triangle_key;
+  for (int q = 0; q < m.quads.rows(); ++q) {
+    const int a = m.quads(q, 0), b = m.quads(q, 1), c = m.quads(q, 2), d = m.quads(q, 3);
+    quad_of_triangle[tri_key(a, b, c)] = q;
+    quad_of_triangle[tri_key(a, c, d)] = q;
+  }
+  std::vector<int> found(m.quads.rows(), 0);
+  std::vector<int> face_quad(m.F.rows(), -1);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    auto it = quad_of_triangle.find(tri_key(m.F(f, 0), m.F(f, 1), m.F(f, 2)));
+    if (it != quad_of_triangle.end()) {
+      face_quad[f] = it->second;
+      ++found[it->second];
+    }
+  }
+  std::vector<std::vector<int>> polygons;
+  std::vector<bool> written(m.quads.rows(), false);
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const int q = face_quad[f];
+    if (q >= 0 && found[q] == 2) {
+      if (!written[q]) polygons.push_back({m.quads(q, 0), m.quads(q, 1), m.quads(q, 2), m.quads(q, 3)});
+      written[q] = true;
+    } else {
+      polygons.push_back({m.F(f, 0), m.F(f, 1), m.F(f, 2)});
+    }
+  }
+  return polygons;
+}
+
+std::string obj_text(const TriangleMesh& m) {
+  std::string out = "# dresskit OBJ: metres, +Y up\n";
+  out.reserve(static_cast<size_t>(m.num_vertices()) * 80 + static_cast<size_t>(m.num_faces()) * 30);
+  for (int i = 0; i < m.num_vertices(); ++i) {
+    out += "v";
+    for (int k = 0; k < 3; ++k) (out += ' ', append_number(out, m.V(i, k)));
+    out += '\n';
+  }
+  for (int i = 0; i < m.UV.rows(); ++i) {
+    out += "vt";
+    for (int k = 0; k < 2; ++k) (out += ' ', append_number(out, m.UV(i, k)));
+    out += '\n';
+  }
+  for (int i = 0; i < m.N.rows(); ++i) {
+    out += "vn";
+    for (int k = 0; k < 3; ++k) (out += ' ', append_number(out, m.N(i, k)));
+    out += '\n';
+  }
+  const bool uv = m.UV.rows() > 0, n = m.N.rows() > 0;
+  for (const auto& polygon : output_polygons(m)) {
+    out += 'f';
+    for (int v : polygon) {
+      out += ' ';
+      append_int(out, v + 1);
+      if (uv || n) {
+        out += '/';
+        if (uv) append_int(out, v + 1);
+        if (n) (out += '/', append_int(out, v + 1));
+      }
+    }
+    out += '\n';
+  }
+  return out;
+}
+
+template <typename T>
+void append_binary(std::string& out, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));  // little endian on every platform we build for
+  out.append(bytes, sizeof(T));
+}
+
+std::string ply_bytes(const TriangleMesh& m) {
+  const bool colours = m.has_labels(), normals = m.N.rows() > 0;
+  const auto polygons = output_polygons(m);
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment dresskit: metres, +Y up\n";
+  out += "element vertex " + std::to_string(m.num_vertices()) + "\n";
+  out += "property double x\nproperty double y\nproperty double z\n";
+  if (normals) out += "property double nx\nproperty double ny\nproperty double nz\n";
+  if (colours) out += "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty int label\n";
+  out += "element face " + std::to_string(polygons.size()) + "\n";
+  out += "property list uchar int vertex_indices\nend_header\n";
+  for (int i = 0; i < m.num_vertices(); ++i) {
+    for (int k = 0; k < 3; ++k) append_binary<double>(out, m.V(i, k));
+    if (normals) for (int k = 0; k < 3; ++k) append_binary<double>(out, m.N(i, k));
+    if (colours) {
+      const Eigen::Vector3i c = label_colour(m.labels(i));
+      for (int k = 0; k < 3; ++k) append_binary<unsigned char>(out, static_cast<unsigned char>(c(k)));
+      append_binary<int>(out, m.labels(i));
+    }
+  }
+  for (const auto& polygon : polygons) {
+    append_binary<unsigned char>(out, static_cast<unsigned char>(polygon.size()));
+    for (int v : polygon) append_binary<int>(out, v);
+  }
+  return out;
+}
+
+std::string off_text(const TriangleMesh& m) {
+  const auto polygons = output_polygons(m);
+  std::string out = "OFF\n# dresskit: metres, +Y up\n";
+  out += std::to_string(m.num_vertices()) + " " + std::to_string(polygons.size()) + " 0\n";
+  for (int i = 0; i < m.num_vertices(); ++i) {
+    for (int k = 0; k < 3; ++k) (append_number(out, m.V(i, k)), out += k < 2 ? ' ' : '\n');
+  }
+  for (const auto& polygon : polygons) {
+    append_int(out, long(polygon.size()));
+    for (int v : polygon) (out += ' ', append_int(out, v));
+    out += '\n';
+  }
+  return out;
+}
+
+// Binary STL: single precision, one facet per triangle (STL has no shared vertices).
+std::string stl_bytes(const TriangleMesh& m) {
+  std::string out(80, '\0');
+  const char header[] = "dresskit binary STL, metres, +Y up";
+  out.replace(0, sizeof header - 1, header);
+  append_binary<std::uint32_t>(out, static_cast<std::uint32_t>(m.num_faces()));
+  for (int f = 0; f < m.num_faces(); ++f) {
+    const Eigen::RowVector3d a = m.V.row(m.F(f, 0)), b = m.V.row(m.F(f, 1)), c = m.V.row(m.F(f, 2));
+    const Eigen::RowVector3d n = (b - a).cross(c - a).normalized();
+    for (const Eigen::RowVector3d& p : {n, a, b, c})
+      for (int k = 0; k < 3; ++k) append_binary<float>(out, static_cast<float>(p(k)));
+    append_binary<std::uint16_t>(out, 0);
+  }
+  return out;
+}
+
+// glTF 2 (binary or text + .bin) and FBX through assimp's exporters.
+void write_with_assimp(const TriangleMesh& m, const std::string& path, const char* format) {
+  aiScene scene;  // owns everything below and frees it in its destructor
+  scene.mRootNode = new aiNode("dresskit");
+  scene.mRootNode->mNumMeshes = 1;
+  scene.mRootNode->mMeshes = new unsigned[1]{0};
+  scene.mNumMaterials = 1;
+  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene.mNumMeshes = 1;
+  scene.mMeshes = new aiMesh*[1]{new aiMesh()};
+  aiMesh* mesh = scene.mMeshes[0];
+  mesh->mMaterialIndex = 0;
+  mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  mesh->mNumVertices = static_cast<unsigned>(m.num_vertices());
+  mesh->mVertices = new aiVector3D[mesh->mNumVertices];
+  const Eigen::MatrixX3d N = m.N.rows() ? m.N : vertex_normals(m.V, m.F);
+  mesh->mNormals = new aiVector3D[mesh->mNumVertices];
+  if (m.has_labels()) mesh->mColors[0] = new aiColor4D[mesh->mNumVertices];
+  for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
+    mesh->mVertices[i] = aiVector3D(static_cast<float>(m.V(i, 0)), static_cast<float>(m.V(i, 1)),
+                                    static_cast<float>(m.V(i, 2)));
+    mesh->mNormals[i] = aiVector3D(static_cast<float>(N(i, 0)), static_cast<float>(N(i, 1)),
+                                   static_cast<float>(N(i, 2)));
+    if (m.has_labels()) {
+      const Eigen::Vector3i c = label_colour(m.labels(i));
+      mesh->mColors[0][i] = aiColor4D(c(0) / 255.f, c(1) / 255.f, c(2) / 255.f, 1.f);
+    }
+  }
+  mesh->mNumFaces = static_cast<unsigned>(m.num_faces());
+  mesh->mFaces = new aiFace[mesh->mNumFaces];
+  for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
+    mesh->mFaces[f].mNumIndices = 3;
+    mesh->mFaces[f].mIndices = new unsigned[3];
+    for (int k = 0; k < 3; ++k) mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(m.F(f, k));
+  }
+  Assimp::Exporter exporter;
+  if (exporter.Export(&scene, format, path) != aiReturn_SUCCESS) {
+    throw OutputError(path + ": cannot write " + format + ": " + exporter.GetErrorString());
+  }
+}
+
+void write_bytes(const std::string& path, const std::string& contents) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  if (!out) throw OutputError(path + ": cannot open for writing");
+  out.write(contents.data(), static_cast<std::streamsize>(contents.size()));
+  out.close();
+  if (!out) throw OutputError(path + ": write failed");
+}
+
+}  // namespace
+
+void save_mesh(const TriangleMesh& mesh, const std::string& path) {
+  if (!mesh.V.allFinite()) throw OutputError(path + ": refusing to write a non-finite coordinate");
+  const std::string ext = detail::lower_extension(path);
+  std::function<void(const std::string&)> write;
+  if (ext == "obj") write = [&](const std::string& tmp) { write_bytes(tmp, obj_text(mesh)); };
+  else if (ext == "ply") write = [&](const std::string& tmp) { write_bytes(tmp, ply_bytes(mesh)); };
+  else if (ext == "off") write = [&](const std::string& tmp) { write_bytes(tmp, off_text(mesh)); };
+  else if (ext == "stl") write = [&](const std::string& tmp) { write_bytes(tmp, stl_bytes(mesh)); };
+  else if (ext == "glb") write = [&](const std::string& tmp) { write_with_assimp(mesh, tmp, "glb2"); };
+  else if (ext == "gltf") write = [&](const std::string& tmp) { write_with_assimp(mesh, tmp, "gltf2"); };
+  // ASCII FBX: the binary FBX exporter of assimp 5.2 writes files that its own reader rejects
+  // ("FBX-Tokenize block offset is out of range"; assimp issue #4686).
+  else if (ext == "fbx") write = [&](const std::string& tmp) { write_with_assimp(mesh, tmp, "fbxa"); };
+  else throw OutputError(path + ": cannot save '." + ext + "' files (supported: obj, ply, off, stl, glb, gltf, fbx)");
+  write_via_temporary(path, write);
+}
+
+void write_file_atomically(const std::string& path, const std::string& contents) {
+  write_via_temporary(path, [&](const std::string& tmp) { write_bytes(tmp, contents); });
+}
+
+}  // namespace dresskit
