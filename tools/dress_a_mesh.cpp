@@ -1,0 +1,276 @@
+// dress-a-mesh: the command-line front of dresskit. Exit codes: docs/cli.md.
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include "dresskit/mesh/cleanup.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+#include "dresskit/mesh/topology.h"
+#include "dresskit/scene/garments.h"
+#include "dresskit/scene/mannequin.h"
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+using namespace dresskit;
+
+namespace {
+
+struct LoadArgs {
+  std::string path, units = "m", up = "+y";
+  void add_to(CLI::App* cmd) {
+    cmd->add_option("MESH", path, "input mesh (obj, ply, off, stl, gltf, glb, fbx)")->required();
+    cmd->add_option("--units", units, "source length unit: m, dm, cm, mm or metres per unit")
+        ->capture_default_str();
+    cmd->add_option("--up", up, "source up axis: +x, -x, +y, -y, +z, -z")->capture_default_str();
+  }
+  TriangleMesh load() const {
+    LoadOptions options;
+    options.units = Units::parse(units);
+    options.up = parse_up_axis(up);
+    return load_mesh(path, options);
+  }
+};
+
+json topology_json(const TriangleMesh& mesh) {
+  const TopologyReport t = analyse_topology(mesh);
+  const Eigen::AlignedBox3d box = bounding_box(mesh);
+  return {{"vertices", t.num_vertices},
+          {"faces", t.num_faces},
+          {"quads", mesh.quads.rows()},
+          {"edges", t.num_edges},
+          {"bounding_box_m", {{"min", {box.min().x(), box.min().y(), box.min().z()}},
+                              {"max", {box.max().x(), box.max().y(), box.max().z()}}}},
+          {"components", t.num_components},
+          {"boundary_loops", t.num_boundary_loops},
+          {"boundary_edges", t.num_boundary_edges},
+          {"non_manifold_edges", t.num_non_manifold_edges},
+          {"non_manifold_vertices", t.num_non_manifold_vertices},
+          {"isolated_vertices", t.num_isolated_vertices},
+          {"degenerate_faces", t.num_degenerate_faces},
+          {"inconsistent_edges", t.num_inconsistent_edges},
+          {"manifold", t.manifold},
+          {"closed", t.closed},
+          {"consistently_oriented", t.consistently_oriented},
+          {"outward", t.outward},
+          {"area_m2", t.area},
+          {"volume_m3", t.closed ? json(t.signed_volume) : json(nullptr)},
+          {"euler_characteristic", t.euler_characteristic}};
+}
+
+void print_topology(const json& j) {
+  const auto& b = j["bounding_box_m"];
+  std::cout << "vertices: " << j["vertices"] << "\nfaces: " << j["faces"] << " (" << j["quads"]
+            << " quads in the source)\nbounding box [m]: min " << b["min"].dump() << " max "
+            << b["max"].dump() << "\ncomponents: " << j["components"]
+            << "\nboundary loops: " << j["boundary_loops"] << " (" << j["boundary_edges"]
+            << " edges)\nmanifold: " << (j["manifold"].get<bool>() ? "yes" : "no") << " ("
+            << j["non_manifold_edges"] << " non-manifold edges, " << j["non_manifold_vertices"]
+            << " non-manifold vertices)\nclosed: " << (j["closed"].get<bool>() ? "yes" : "no")
+            << "\nconsistently oriented: " << (j["consistently_oriented"].get<bool>() ? "yes" : "no")
+            << "\noutward: " << (j["outward"].get<bool>() ? "yes" : "no")
+            << "\nisolated vertices: " << j["isolated_vertices"]
+            << "\ndegenerate faces: " << j["degenerate_faces"] << "\narea [m^2]: " << j["area_m2"]
+            << "\n";
+}
+
+// Refuses an output path that is one of the inputs, or whose extension cannot be written.
+void check_output(const std::string& out, const std::string& input) {
+  std::error_code ec;
+  if (fs::exists(out, ec) && fs::equivalent(out, input, ec)) {
+    throw InputError(out + ": refusing to overwrite the input");
+  }
+  std::string ext = fs::path(out).extension().string();
+  if (!ext.empty()) ext.erase(0, 1);
+  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const auto& ok = saveable_extensions();
+  if (std::find(ok.begin(), ok.end(), ext) == ok.end()) {
+    std::string list;
+    for (const auto& e : ok) list += (list.empty() ? "" : ", ") + e;
+    throw InputError(out + ": cannot write '." + ext + "' files (supported: " + list + ")");
+  }
+  const fs::path dir = fs::path(out).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec)) throw OutputError(out + ": no such directory");
+}
+
+int run_info(const LoadArgs& args, bool as_json) {
+  const TriangleMesh mesh = args.load();
+  json j = topology_json(mesh);
+  j["file"] = args.path;
+  j["units"] = Units::parse(args.units).name;
+  j["up"] = args.up;
+  if (as_json) {
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << "file: " << args.path << " (units " << j["units"].get<std::string>() << ", up "
+              << args.up << "; converted to metres, +Y up)\n";
+    print_topology(j);
+  }
+  return 0;
+}
+
+int run_clean(const LoadArgs& args, const std::string& out, const CleanupOptions& options,
+              bool as_json) {
+  check_output(out, args.path);
+  const TriangleMesh mesh = args.load();
+  const CleanupResult r = cleanup_mesh(mesh, options);
+  validate_mesh(r.mesh, out);  // never write an empty or broken result
+  save_mesh(r.mesh, out);
+  if (as_json) {
+    json j = {{"input", args.path}, {"output", out}, {"changes", r.changes()},
+              {"result", topology_json(r.mesh)}};
+    std::cout << j.dump(2) << "\n";
+  } else {
+    std::cout << "cleaned " << args.path << " -> " << out << "\n";
+    if (r.changes().empty()) std::cout << "  nothing to fix\n";
+    for (const auto& line : r.changes()) std::cout << "  " << line << "\n";
+    const TopologyReport t = analyse_topology(r.mesh);
+    std::cout << "  result: " << t.num_vertices << " vertices, " << t.num_faces << " faces, "
+              << t.num_components << " components, " << t.num_boundary_loops << " boundary loops, "
+              << (t.manifold ? "manifold" : "NOT manifold") << ", "
+              << (t.closed ? (t.outward ? "closed and outward" : "closed") : "open") << "\n";
+  }
+  return 0;
+}
+
+int run_demo(const std::string& dir, const MannequinOptions& body_options,
+             const GarmentOptions& garment_options) {
+  using Clock = std::chrono::steady_clock;
+  const BodyShape body(body_options);
+  if (std::error_code ec; !fs::create_directories(dir, ec) && ec) {
+    throw OutputError(dir + ": cannot create directory: " + ec.message());
+  }
+  json report = {{"scene", "embedded default: procedural mannequin and garments"},
+                 {"units", "m, +Y up, facing +Z"},
+                 {"mannequin_options",
+                  {{"height_m", body_options.height},
+                   {"girth", body_options.girth},
+                   {"pose", body_options.pose == Pose::a_pose ? "a-pose" : "t-pose"},
+                   {"edge_length_m", body_options.edge_length}}},
+                 {"stages_run", {"mannequin", "garments"}},
+                 {"stages_not_run",
+                  {{"segmentation", "not implemented yet"},
+                   {"alignment", "not implemented yet"},
+                   {"simulation", "not implemented yet"}}}};
+  std::vector<std::string> written;
+  try {
+    auto write = [&](const TriangleMesh& mesh, const std::string& name, double seconds) {
+      for (const char* ext : {"obj", "ply", "glb"}) {
+        const std::string path = (fs::path(dir) / (name + "." + ext)).string();
+        save_mesh(mesh, path);
+        written.push_back(path);
+      }
+      json j = topology_json(mesh);
+      j["seconds"] = seconds;
+      std::vector<int> per_label(mesh.label_names.size(), 0);
+      for (int i = 0; i < mesh.labels.size(); ++i) ++per_label[mesh.labels(i)];
+      for (size_t l = 0; l < per_label.size(); ++l) {
+        if (per_label[l]) j["vertices_per_label"][mesh.label_names[l]] = per_label[l];
+      }
+      report["meshes"][name] = j;
+      std::cout << name << ": " << mesh.num_vertices() << " vertices, " << mesh.num_faces()
+                << " faces, " << j["boundary_loops"] << " boundary loops ("
+                << static_cast<int>(seconds * 1000) << " ms)\n";
+    };
+    auto t0 = Clock::now();
+    const TriangleMesh mannequin = make_mannequin(body);
+    write(mannequin, "mannequin", std::chrono::duration<double>(Clock::now() - t0).count());
+    for (GarmentKind kind : all_garment_kinds()) {
+      t0 = Clock::now();
+      const TriangleMesh garment = make_garment(body, kind, garment_options);
+      write(garment, to_string(kind), std::chrono::duration<double>(Clock::now() - t0).count());
+    }
+    const std::string report_path = (fs::path(dir) / "report.json").string();
+    write_file_atomically(report_path, report.dump(2) + "\n");
+    std::cout << "wrote " << written.size() + 1 << " files to " << dir << "\n";
+  } catch (...) {
+    for (const auto& path : written) {
+      std::error_code ignored;
+      fs::remove(path, ignored);
+    }
+    throw;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"dress-a-mesh: dress 3D human bodies in garments (dresskit)"};
+  app.set_version_flag("--version", std::string("dress-a-mesh ") + DRESSKIT_VERSION);
+  app.require_subcommand(1);
+
+  LoadArgs info_args, clean_args;
+  bool info_json = false, clean_json = false;
+  auto* info = app.add_subcommand("info", "print vertices, faces, bounding box, components, "
+                                          "boundary loops, manifoldness and closedness");
+  info_args.add_to(info);
+  info->add_flag("--json", info_json, "print JSON");
+
+  std::string clean_out;
+  CleanupOptions clean_options;
+  auto* clean = app.add_subcommand("clean", "repair a mesh and write it; prints what it fixed");
+  clean_args.add_to(clean);
+  clean->add_option("-o,--output", clean_out, "output mesh (obj, ply, off, stl, glb, gltf, fbx)")->required();
+  clean->add_option("--remesh", clean_options.remesh_edge_length,
+                    "isotropic remeshing to this edge length [m, after unit conversion]")
+      ->check(CLI::PositiveNumber);
+  clean->add_flag("--fill-holes", clean_options.fill_holes, "fill small holes");
+  clean->add_option("--max-hole-edges", clean_options.max_hole_edges,
+                    "largest hole to fill [boundary edges]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  clean->add_flag("--largest-component", clean_options.keep_largest_component,
+                  "keep only the largest connected component");
+  clean->add_flag("--json", clean_json, "print JSON");
+
+  std::string demo_dir;
+  MannequinOptions body_options;
+  GarmentOptions garment_options;
+  std::string pose = "a-pose";
+  auto* demo = app.add_subcommand("demo", "write the embedded default scene: procedural mannequin "
+                                          "and garments (obj, ply, glb) and report.json");
+  demo->add_option("-o,--output", demo_dir, "output directory")->required();
+  demo->add_option("--height", body_options.height, "mannequin height [m]")->capture_default_str();
+  demo->add_option("--girth", body_options.girth, "mannequin girth scale")->capture_default_str();
+  demo->add_option("--pose", pose, "a-pose or t-pose")->capture_default_str();
+  demo->add_option("--edge", body_options.edge_length, "target edge length [m]")->capture_default_str();
+  demo->add_option("--ease", garment_options.ease, "garment ease over the body [m]")
+      ->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "dress-a-mesh: " << e.what() << " (see --help)\n";
+    return static_cast<int>(ExitCode::usage);
+  }
+
+  try {
+    if (*info) return run_info(info_args, info_json);
+    if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
+    if (*demo) {
+      body_options.pose = parse_pose(pose);
+      garment_options.edge_length = body_options.edge_length;
+      return run_demo(demo_dir, body_options, garment_options);
+    }
+  } catch (const InputError& e) {
+    std::cerr << "dress-a-mesh: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::bad_input);
+  } catch (const OutputError& e) {
+    std::cerr << "dress-a-mesh: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::output_failed);
+  } catch (const std::exception& e) {
+    std::cerr << "dress-a-mesh: internal error: " << e.what() << "\n";
+    return static_cast<int>(ExitCode::internal_error);
+  }
+  return static_cast<int>(ExitCode::internal_error);
+}
