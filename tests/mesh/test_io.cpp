@@ -1,0 +1,143 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "dresskit/mesh/cleanup.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+#include "dresskit/mesh/topology.h"
+#include "mesh_fixtures.h"
+#include "test_data.h"
+
+using namespace dresskit;
+
+namespace {
+void write_text(const std::string& path, const std::string& text) {
+  std::ofstream(path, std::ios::binary) << text;
+}
+
+// Same surface up to vertex order and single precision: counts, area, volume, bounding box.
+void expect_same_surface(const TriangleMesh& a, const TriangleMesh& b, double tol) {
+  const TopologyReport ta = analyse_topology(a), tb = analyse_topology(b);
+  EXPECT_EQ(ta.num_faces, tb.num_faces);
+  EXPECT_EQ(ta.num_components, tb.num_components);
+  EXPECT_EQ(ta.closed, tb.closed);
+  EXPECT_EQ(ta.outward, tb.outward);
+  EXPECT_NEAR(ta.area, tb.area, tol * ta.area);
+  EXPECT_NEAR(ta.signed_volume, tb.signed_volume, tol * std::abs(ta.signed_volume) + 1e-12);
+  EXPECT_TRUE(bounding_box(a).min().isApprox(bounding_box(b).min(), tol));
+  EXPECT_TRUE(bounding_box(a).max().isApprox(bounding_box(b).max(), tol));
+}
+}  // namespace
+
+TEST(Units, ParseNamesAndScales) {
+  EXPECT_DOUBLE_EQ(Units::parse("m").metres_per_unit, 1.0);
+  EXPECT_DOUBLE_EQ(Units::parse("dm").metres_per_unit, 0.1);
+  EXPECT_DOUBLE_EQ(Units::parse("cm").metres_per_unit, 0.01);
+  EXPECT_DOUBLE_EQ(Units::parse("mm").metres_per_unit, 0.001);
+  EXPECT_DOUBLE_EQ(Units::parse("0.0033333").metres_per_unit, 0.0033333);
+  EXPECT_THROW(Units::parse("inch"), InputError);
+  EXPECT_THROW(Units::parse("-1"), InputError);
+  EXPECT_THROW(Units::parse("nan"), InputError);
+  EXPECT_THROW(Units::parse(""), InputError);
+  EXPECT_THROW(parse_up_axis("w"), InputError);
+}
+
+TEST(Io, ObjRoundTripIsExactAndKeepsQuads) {
+  test::TempDir dir;
+  TriangleMesh cube = fixtures::cube(0.3);
+  cube.V.row(0) << -0.15000000000000002, -0.1, 0.1234567890123456789;  // needs 17 digits
+  save_mesh(cube, dir.file("cube.obj"));
+  const TriangleMesh back = load_mesh(dir.file("cube.obj"));
+  EXPECT_EQ(back.V, cube.V);  // exact: shortest round-trip numbers, file order kept
+  EXPECT_EQ(back.quads, cube.quads);
+  EXPECT_EQ(back.F, cube.F);
+  EXPECT_EQ(back.source_vertex, Eigen::VectorXi::LinSpaced(8, 0, 7));
+}
+
+TEST(Io, PlyRoundTripKeepsOrderAndQuads) {
+  test::TempDir dir;
+  TriangleMesh m = fixtures::cube(1.7);
+  m.labels = Eigen::VectorXi::LinSpaced(8, 0, 7);
+  save_mesh(m, dir.file("cube.ply"));
+  const TriangleMesh back = load_mesh(dir.file("cube.ply"));
+  ASSERT_EQ(back.num_vertices(), 8);
+  // The file holds doubles, but assimp reads PLY in single precision.
+  EXPECT_TRUE(back.V.isApprox(m.V, 1e-7));
+  EXPECT_EQ(back.quads, m.quads);
+  expect_same_surface(m, back, 1e-6);
+}
+
+// Every format the loader reads, written by save_mesh and read back.
+class RoundTrip : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(RoundTrip, SurfaceSurvives) {
+  test::TempDir dir;
+  TriangleMesh m = fixtures::cube(0.5);
+  m.V.col(1).array() += 1.0;  // off the origin, so a lost translation would show
+  const std::string path = dir.file("cube." + GetParam());
+  save_mesh(m, path);
+  EXPECT_TRUE(std::filesystem::exists(path));
+  // STL has no shared vertices, and assimp splits vertices by normal: compare after merging.
+  const TriangleMesh back = cleanup_mesh(load_mesh(path)).mesh;
+  EXPECT_EQ(back.num_vertices(), 8);
+  expect_same_surface(m, back, 1e-6);
+  // No temporary file left behind.
+  for (const auto& entry : std::filesystem::directory_iterator(dir.path())) {
+    EXPECT_EQ(entry.path().filename().string().rfind(".dresskit-tmp", 0), std::string::npos);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllFormats, RoundTrip,
+                         ::testing::Values("obj", "ply", "off", "stl", "glb", "gltf", "fbx"));
+
+TEST(Io, UnitsAndUpAxisAreApplied) {
+  test::TempDir dir;
+  write_text(dir.file("tri.obj"), "v 0 0 0\nv 10 0 0\nv 0 0 20\nf 1 2 3\n");
+  LoadOptions options;
+  options.units = Units::parse("cm");
+  options.up = UpAxis::pos_z;
+  const TriangleMesh m = load_mesh(dir.file("tri.obj"), options);
+  // +Z up becomes +Y up: (x, y, z) -> (x, z, -y); then centimetres -> metres.
+  EXPECT_TRUE(m.V.row(1).isApprox(Eigen::RowVector3d(0.1, 0, 0)));
+  EXPECT_TRUE(m.V.row(2).isApprox(Eigen::RowVector3d(0, 0.2, 0)));
+  for (UpAxis up : {UpAxis::pos_x, UpAxis::neg_x, UpAxis::neg_y, UpAxis::neg_z}) {
+    options.up = up;
+    options.units = Units::parse("m");
+    const TriangleMesh r = load_mesh(dir.file("tri.obj"), options);
+    // A proper rotation: lengths and the triangle's orientation are kept.
+    EXPECT_NEAR((r.V.row(2) - r.V.row(1)).norm(), std::sqrt(500.0), 1e-12) << to_string(up);
+    EXPECT_NEAR(analyse_topology(r).area, 100.0, 1e-9) << to_string(up);
+  }
+}
+
+TEST(Io, ObjVertexOrderMapSurvivesUvSeamsAndUnusedVertices) {
+  test::TempDir dir;
+  // Vertex 3 is unused; vertices 1 and 2 get two different UVs (a seam), which assimp splits.
+  write_text(dir.file("seam.obj"),
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 9 9 9\nv 0 1 0\n"
+             "vt 0 0\nvt 1 0\nvt 1 1\nvt 0.5 0.5\nvt 0.25 0.25\nvt 0 1\n"
+             "f 1/1 2/2 3/3\nf 1/1 3/4 5/6\nf 2/5 3/3 5/6\n");
+  const TriangleMesh m = load_mesh(dir.file("seam.obj"));
+  ASSERT_EQ(m.num_vertices(), 5);  // exactly the `v` lines, in file order
+  EXPECT_TRUE(m.V.row(3).isApprox(Eigen::RowVector3d(9, 9, 9)));
+  EXPECT_EQ(m.F.rows(), 3);
+  EXPECT_EQ(m.F.row(0), Eigen::RowVector3i(0, 1, 2));
+  EXPECT_EQ(m.F.row(1), Eigen::RowVector3i(0, 2, 4));
+  EXPECT_EQ(m.F.row(2), Eigen::RowVector3i(1, 2, 4));
+  ASSERT_EQ(m.UV.rows(), 5);
+  EXPECT_TRUE(m.UV.row(4).isApprox(Eigen::RowVector2d(0, 1)));
+}
+
+TEST(Io, SaveLeavesNothingWhenTheFolderIsMissing) {
+  test::TempDir dir;
+  const std::string path = dir.file("missing/out.obj");
+  EXPECT_THROW(save_mesh(fixtures::cube(1.0), path), OutputError);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  EXPECT_THROW(save_mesh(fixtures::cube(1.0), dir.file("out.xyz")), OutputError);
+  TriangleMesh bad = fixtures::cube(1.0);
+  bad.V(0, 0) = std::nan("");
+  EXPECT_THROW(save_mesh(bad, dir.file("nan.obj")), OutputError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir.path()));
+}

@@ -1,0 +1,84 @@
+#include <gtest/gtest.h>
+
+#include "dresskit/mesh/topology.h"
+#include "mesh_fixtures.h"
+
+using namespace dresskit;
+
+TEST(Topology, TetrahedronIsClosedOutwardWithKnownVolume) {
+  const TriangleMesh m = fixtures::tetrahedron();
+  const TopologyReport t = analyse_topology(m);
+  EXPECT_EQ(t.num_vertices, 4);
+  EXPECT_EQ(t.num_edges, 6);
+  EXPECT_EQ(t.num_components, 1);
+  EXPECT_EQ(t.num_boundary_loops, 0);
+  EXPECT_TRUE(t.manifold);
+  EXPECT_TRUE(t.closed);
+  EXPECT_TRUE(t.outward);
+  EXPECT_EQ(t.euler_characteristic, 2);
+  EXPECT_NEAR(t.signed_volume, 1.0 / 6.0, 1e-15);  // unit right tetrahedron
+  EXPECT_NEAR(t.area, 1.5 + std::sqrt(3.0) / 2.0, 1e-12);
+}
+
+TEST(Topology, CubeVolumeAndFlippedFaceIsInconsistent) {
+  TriangleMesh m = fixtures::cube(2.0);
+  TopologyReport t = analyse_topology(m);
+  EXPECT_NEAR(t.signed_volume, 8.0, 1e-12);
+  EXPECT_NEAR(t.area, 24.0, 1e-12);
+  EXPECT_TRUE(t.outward);
+  std::swap(m.F(3, 1), m.F(3, 2));
+  t = analyse_topology(m);
+  EXPECT_EQ(t.num_inconsistent_edges, 3);
+  EXPECT_FALSE(t.consistently_oriented);
+  EXPECT_FALSE(t.outward);
+}
+
+TEST(Topology, OpenGridHasOneBoundaryLoop) {
+  const TriangleMesh m = fixtures::grid(4, 3, 1.0);
+  const TopologyReport t = analyse_topology(m);
+  EXPECT_EQ(t.num_boundary_loops, 1);
+  EXPECT_EQ(t.num_boundary_edges, 2 * (4 + 3));
+  EXPECT_TRUE(t.manifold);
+  EXPECT_FALSE(t.closed);
+  EXPECT_EQ(t.euler_characteristic, 1);  // a disc
+}
+
+TEST(Topology, TwoTetrahedraSharingAVertexIsNonManifold) {
+  const TriangleMesh m = fixtures::bowtie_tetrahedra();
+  const TopologyReport t = analyse_topology(m);
+  EXPECT_EQ(t.num_components, 1);
+  EXPECT_EQ(t.num_non_manifold_vertices, 1);
+  EXPECT_EQ(t.num_non_manifold_edges, 0);
+  EXPECT_FALSE(t.manifold);
+  EXPECT_FALSE(t.closed);
+}
+
+TEST(Topology, EdgeWithThreeFacesIsNonManifold) {
+  TriangleMesh m;
+  m.V.resize(5, 3);
+  m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1;
+  m.F.resize(3, 3);
+  m.F << 0, 1, 2, 1, 0, 3, 0, 1, 4;
+  const TopologyReport t = analyse_topology(m);
+  EXPECT_EQ(t.num_non_manifold_edges, 1);
+  EXPECT_FALSE(t.manifold);
+}
+
+TEST(Topology, SplitComponentsLargestFirstAndOrientOutward) {
+  TriangleMesh a = fixtures::cube(1.0), b = fixtures::tetrahedron();
+  TriangleMesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, (b.V.array() + 5.0).matrix();
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + int(a.V.rows())).matrix();
+  // Turn the tetrahedron inside out.
+  for (int f = int(a.F.rows()); f < m.num_faces(); ++f) std::swap(m.F(f, 1), m.F(f, 2));
+  EXPECT_EQ(analyse_topology(m).num_components, 2);
+  EXPECT_EQ(orient_closed_components_outward(m), 4);
+  const auto parts = split_components(m);
+  ASSERT_EQ(parts.size(), 2u);
+  EXPECT_EQ(parts[0].num_faces(), 12);
+  EXPECT_EQ(parts[1].num_faces(), 4);
+  EXPECT_TRUE(analyse_topology(parts[1]).outward);
+  EXPECT_NEAR(analyse_topology(parts[1]).signed_volume, 1.0 / 6.0, 1e-12);
+}

@@ -1,0 +1,53 @@
+#pragma once
+// Where the real test data lives: DRESSKIT_DATA_DIR, else ../shared/data beside the project.
+// With CI=true a missing data folder fails the test; elsewhere the test is skipped with a message.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+
+namespace dresskit::test {
+
+inline std::string data_dir() {
+  const char* env = std::getenv("DRESSKIT_DATA_DIR");
+  return env && *env ? env : DRESSKIT_DEFAULT_DATA_DIR;
+}
+
+inline bool in_ci() {
+  const char* ci = std::getenv("CI");
+  return ci && std::string(ci) == "true";
+}
+
+/// A fresh empty directory under the system temporary folder, removed by the destructor.
+class TempDir {
+ public:
+  TempDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() /
+            ("dresskit_" + std::string(info ? info->name() : "test") + "_" +
+             std::to_string(std::rand()));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  std::string file(const std::string& name) const { return (path_ / name).string(); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+}  // namespace dresskit::test
+
+/// Skips (or, under CI=true, fails) the current test when the real data folder is missing.
+#define DRESSKIT_REQUIRE_DATA()                                                             \
+  do {                                                                                      \
+    if (!std::filesystem::is_directory(::dresskit::test::data_dir())) {                     \
+      if (::dresskit::test::in_ci()) {                                                      \
+        FAIL() << "data folder missing under CI: " << ::dresskit::test::data_dir();         \
+      }                                                                                     \
+      GTEST_SKIP() << "data folder not found: " << ::dresskit::test::data_dir()             \
+                   << " (set DRESSKIT_DATA_DIR)";                                           \
+    }                                                                                       \
+  } while (0)

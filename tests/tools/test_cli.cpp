@@ -1,0 +1,167 @@
+// dress-a-mesh end to end: exit codes, one-line errors naming the file, no partial output, inputs
+// never overwritten.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "dresskit/mesh/io.h"
+#include "../mesh/mesh_fixtures.h"
+#include "test_data.h"
+
+using namespace dresskit;
+
+namespace {
+struct CliRun {
+  int code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CliRun run(const test::TempDir& dir, const std::string& args) {
+  const std::string out = dir.file("stdout.txt"), err = dir.file("stderr.txt");
+  const std::string cmd = std::string(DRESSKIT_CLI) + " " + args + " >" + out + " 2>" + err + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  CliRun r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+void write(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+int lines(const std::string& s) { return static_cast<int>(std::count(s.begin(), s.end(), '\n')); }
+}  // namespace
+
+TEST(Cli, VersionAndHelp) {
+  test::TempDir dir;
+  CliRun r = run(dir, "--version");
+  EXPECT_EQ(r.code, 0);
+  EXPECT_NE(r.out.find("dress-a-mesh 0."), std::string::npos);
+  for (const char* sub : {"info", "clean", "demo"}) {
+    r = run(dir, std::string(sub) + " --help");
+    EXPECT_EQ(r.code, 0) << sub;
+    EXPECT_NE(r.out.find("--"), std::string::npos) << sub;
+  }
+}
+
+TEST(Cli, UsageErrorsExit64) {
+  test::TempDir dir;
+  EXPECT_EQ(run(dir, "").code, 64);
+  EXPECT_EQ(run(dir, "frobnicate").code, 64);
+  EXPECT_EQ(run(dir, "info").code, 64);
+  const CliRun r = run(dir, "clean x.obj -o y.obj --remesh -1");
+  EXPECT_EQ(r.code, 64);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+}
+
+TEST(Cli, InfoTextAndJson) {
+  test::TempDir dir;
+  save_mesh(fixtures::cube(10.0), dir.file("cube.obj"));
+  CliRun r = run(dir, "info " + dir.file("cube.obj") + " --units cm");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("closed: yes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("components: 1"), std::string::npos);
+  r = run(dir, "info " + dir.file("cube.obj") + " --units cm --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["vertices"], 8);
+  EXPECT_EQ(j["faces"], 12);
+  EXPECT_EQ(j["quads"], 6);
+  EXPECT_EQ(j["boundary_loops"], 0);
+  EXPECT_TRUE(j["outward"].get<bool>());
+  EXPECT_NEAR(j["volume_m3"].get<double>(), 0.001, 1e-12);  // 10 cm cube
+  EXPECT_NEAR(j["bounding_box_m"]["max"][0].get<double>(), 0.05, 1e-12);
+}
+
+TEST(Cli, CleanWritesTheRepairedMeshAndSaysWhatItFixed) {
+  test::TempDir dir;
+  TriangleMesh m = fixtures::cube(1.0);
+  std::swap(m.F(0, 1), m.F(0, 2));
+  m.quads.resize(0, 4);
+  save_mesh(m, dir.file("in.obj"));
+  const std::string before = slurp(dir.file("in.obj"));
+  const CliRun r = run(dir, "clean " + dir.file("in.obj") + " -o " + dir.file("out.ply"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 faces reoriented"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("closed and outward"), std::string::npos) << r.out;
+  EXPECT_EQ(slurp(dir.file("in.obj")), before);  // input untouched
+  EXPECT_EQ(load_mesh(dir.file("out.ply")).num_faces(), 12);
+}
+
+TEST(Cli, CleanRefusesToOverwriteItsInput) {
+  test::TempDir dir;
+  save_mesh(fixtures::cube(1.0), dir.file("in.obj"));
+  const std::string before = slurp(dir.file("in.obj"));
+  const CliRun r = run(dir, "clean " + dir.file("in.obj") + " -o " + dir.file("in.obj"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1);
+  EXPECT_NE(r.err.find("refusing to overwrite the input"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir.file("in.obj")), before);
+}
+
+// Every bad input: exit 2, one line on stderr naming the file, and no output file.
+TEST(Cli, BadInputsExit2WithOneLineAndNoOutput) {
+  test::TempDir dir;
+  write(dir.file("empty.obj"), "");
+  write(dir.file("nofaces.obj"), "v 0 0 0\nv 1 0 0\n");
+  write(dir.file("nan.obj"), "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+  write(dir.file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
+  write(dir.file("trunc.ply"), "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+                               "property float x\nproperty float y\nproperty float z\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n\x01\x02");
+  write(dir.file("mesh.txt"), "hello\n");
+  for (const char* name : {"missing.obj", "empty.obj", "nofaces.obj", "nan.obj", "range.obj",
+                           "trunc.ply", "mesh.txt"}) {
+    const std::string in = dir.file(name), out = dir.file("out.obj");
+    for (const std::string& cmd : {"info " + in, "clean " + in + " -o " + out}) {
+      const CliRun r = run(dir, cmd);
+      EXPECT_EQ(r.code, 2) << cmd << "\n" << r.err;
+      EXPECT_EQ(lines(r.err), 1) << cmd << "\n" << r.err;
+      EXPECT_NE(r.err.find(in), std::string::npos) << r.err;
+      EXPECT_FALSE(std::filesystem::exists(out)) << cmd;
+    }
+  }
+  // Bad values of options name the value.
+  save_mesh(fixtures::cube(1.0), dir.file("ok.obj"));
+  CliRun r = run(dir, "info " + dir.file("ok.obj") + " --units furlong");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("furlong"), std::string::npos);
+  r = run(dir, "clean " + dir.file("ok.obj") + " -o " + dir.file("out.xyz"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("out.xyz"), std::string::npos);
+  r = run(dir, "demo -o " + dir.file("d") + " --height 9");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("height"), std::string::npos);
+}
+
+TEST(Cli, DemoWritesTheSceneAndAReport) {
+  test::TempDir dir;
+  const CliRun r = run(dir, "demo -o " + dir.file("demo") + " --edge 0.03");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* name : {"mannequin", "tshirt", "skirt", "trousers"}) {
+    for (const char* ext : {"obj", "ply", "glb"}) {
+      EXPECT_TRUE(std::filesystem::exists(dir.file("demo/" + std::string(name) + "." + ext))) << name << ext;
+    }
+  }
+  const auto report = nlohmann::json::parse(slurp(dir.file("demo/report.json")));
+  EXPECT_TRUE(report["meshes"]["mannequin"]["closed"].get<bool>());
+  EXPECT_EQ(report["meshes"]["tshirt"]["boundary_loops"], 4);
+  EXPECT_EQ(report["meshes"]["trousers"]["boundary_loops"], 3);
+  EXPECT_EQ(report["meshes"]["skirt"]["boundary_loops"], 2);
+  // The GLB reads back with the same triangles.
+  EXPECT_EQ(load_mesh(dir.file("demo/mannequin.glb")).num_faces(),
+            report["meshes"]["mannequin"]["faces"].get<int>());
+}
