@@ -83,14 +83,11 @@ void check_output(const std::string& out, const std::string& input) {
   if (fs::exists(out, ec) && fs::equivalent(out, input, ec)) {
     throw InputError(out + ": refusing to overwrite the input");
   }
-  std::string ext = fs::path(out).extension().string();
-  if (!ext.empty()) ext.erase(0, 1);
-  for (auto& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const auto& ok = saveable_extensions();
-  if (std::find(ok.begin(), ok.end(), ext) == ok.end()) {
+  if (!is_saveable(out)) {
     std::string list;
-    for (const auto& e : ok) list += (list.empty() ? "" : ", ") + e;
-    throw InputError(out + ": cannot write '." + ext + "' files (supported: " + list + ")");
+    for (const auto& e : saveable_extensions()) list += (list.empty() ? "" : ", ") + e;
+    throw InputError(out + ": cannot write '" + fs::path(out).extension().string() +
+                     "' files (supported: " + list + ")");
   }
   const fs::path dir = fs::path(out).parent_path();
   if (!dir.empty() && !fs::is_directory(dir, ec)) throw OutputError(out + ": no such directory");
@@ -117,7 +114,7 @@ int run_clean(const LoadArgs& args, const std::string& out, const CleanupOptions
   check_output(out, args.path);
   const TriangleMesh mesh = args.load();
   const CleanupResult r = cleanup_mesh(mesh, options);
-  validate_mesh(r.mesh, out);  // never write an empty or broken result
+  validate_mesh(r.mesh, args.path + " after cleanup");  // never write an empty or broken result
   save_mesh(r.mesh, out);
   if (as_json) {
     json j = {{"input", args.path}, {"output", out}, {"changes", r.changes()},
@@ -139,8 +136,11 @@ int run_clean(const LoadArgs& args, const std::string& out, const CleanupOptions
 int run_demo(const std::string& dir, const MannequinOptions& body_options,
              const GarmentOptions& garment_options) {
   using Clock = std::chrono::steady_clock;
-  const BodyShape body(body_options);
-  if (std::error_code ec; !fs::create_directories(dir, ec) && ec) {
+  const BodyShape body(body_options);  // checks the options before anything is written
+  check_options(garment_options);
+  std::error_code ec;
+  const bool created_dir = !fs::exists(dir, ec);
+  if (!fs::create_directories(dir, ec) && ec) {
     throw OutputError(dir + ": cannot create directory: " + ec.message());
   }
   json report = {{"scene", "embedded default: procedural mannequin and garments"},
@@ -187,10 +187,9 @@ int run_demo(const std::string& dir, const MannequinOptions& body_options,
     write_file_atomically(report_path, report.dump(2) + "\n");
     std::cout << "wrote " << written.size() + 1 << " files to " << dir << "\n";
   } catch (...) {
-    for (const auto& path : written) {
-      std::error_code ignored;
-      fs::remove(path, ignored);
-    }
+    std::error_code ignored;
+    for (const auto& path : written) fs::remove(path, ignored);
+    if (created_dir) fs::remove(dir, ignored);  // only if empty: never anything of the user's
     throw;
   }
   return 0;

@@ -26,6 +26,11 @@ const std::vector<std::string>& saveable_extensions() {
   return ext;
 }
 
+bool is_saveable(const std::string& path) {
+  const auto& ok = saveable_extensions();
+  return std::find(ok.begin(), ok.end(), detail::lower_extension(path)) != ok.end();
+}
+
 namespace {
 
 // Runs write(tmp_path) in a private temporary folder beside the destination, with the destination's

@@ -88,7 +88,7 @@ double along(const Eigen::Vector3d& p, const Eigen::Vector3d& root, const Eigen:
 
 }  // namespace
 
-TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const GarmentOptions& options) {
+void check_options(const GarmentOptions& options) {
   if (!(options.ease >= 0.003 && options.ease <= 0.1)) {
     throw InputError("ease: " + std::to_string(options.ease) + " m is outside 0.003–0.1 m");
   }
@@ -96,6 +96,10 @@ TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const Garment
     throw InputError("edge length: " + std::to_string(options.edge_length) +
                      " m is outside 0.004–0.1 m");
   }
+}
+
+TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const GarmentOptions& options) {
+  check_options(options);
   const ImplicitUnion solid = garment_solid(body, kind, options.ease);
   const Skeleton& s = body.skeleton();
   const double H = body.options().height;

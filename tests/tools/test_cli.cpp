@@ -145,6 +145,10 @@ TEST(Cli, BadInputsExit2WithOneLineAndNoOutput) {
   r = run(dir, "demo -o " + dir.file("d") + " --height 9");
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("height"), std::string::npos);
+  r = run(dir, "demo -o " + dir.file("d") + " --ease 0.5");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("ease"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("d")));
 }
 
 TEST(Cli, DemoWritesTheSceneAndAReport) {

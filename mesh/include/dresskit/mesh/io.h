@@ -49,6 +49,8 @@ void save_mesh(const TriangleMesh& mesh, const std::string& path);
 
 /// The file extensions (lower case, without dot) that save_mesh writes.
 const std::vector<std::string>& saveable_extensions();
+/// Whether save_mesh can write this path's extension (case-insensitive).
+bool is_saveable(const std::string& path);
 
 /// Writes text to path through a temporary file and a rename (no partial file on failure).
 void write_file_atomically(const std::string& path, const std::string& contents);

@@ -25,6 +25,9 @@ struct GarmentOptions {
   double edge_length = 0.02;  ///< [m] target edge length, 0.004–0.1
 };
 
+/// Throws InputError naming the field when an option is out of its documented range.
+void check_options(const GarmentOptions& options);
+
 /// An open, manifold, consistently oriented (normals away from the body) triangle mesh with per-vertex
 /// part labels (label_names = garment_part_names()). Boundary loops: t-shirt 4 (neck, hem, two cuffs),
 /// skirt 2 (waist, hem), trousers 3 (waist, two hems). Throws InputError naming the options when
