@@ -1,0 +1,56 @@
+#pragma once
+// A cloth as particles and springs, in flat arrays (structure of arrays): particles are the mesh
+// vertices; springs are structural (mesh edges, quad sides), shear (quad diagonals) and bending
+// (across every interior edge, between the two opposite vertices). Stiffness from the fabric:
+// docs/cloth.md.
+#include <cstdint>
+#include <vector>
+
+#include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/stiffness_law.h"
+#include "dresskit/mesh/triangle_mesh.h"
+
+namespace dresskit {
+
+enum class SpringType : std::uint8_t { structural = 0, shear = 1, bending = 2 };
+
+/// #S springs, one entry per spring in every array.
+struct SpringSet {
+  std::vector<int> i, j;                ///< end particles
+  std::vector<double> rest_length;      ///< [m]
+  std::vector<double> k_rest, k_knee;   ///< stiffness at rest and at the knee strain [N/m]
+  std::vector<SpringType> type;
+  int size() const { return static_cast<int>(i.size()); }
+  StiffnessLaw law(int s) const { return StiffnessLaw::fitted(k_rest[s], k_knee[s], kKneeStrain); }
+  int count(SpringType t) const;
+};
+
+struct ClothBuildOptions {
+  /// The fabric's warp direction in space; projected onto each face's plane [unitless].
+  Eigen::Vector3d warp_direction = Eigen::Vector3d::UnitX();
+  bool bending_springs = true;
+  /// Total mass [kg]; 0 = areal density × area.
+  double total_mass = 0.0;
+};
+
+struct ClothModel {
+  Eigen::MatrixX3d rest_positions;  ///< #V×3 [m]
+  Eigen::VectorXd mass;             ///< #V [kg]
+  Eigen::MatrixX3i faces;           ///< #F×3, the faces kept (zero-area ones are skipped)
+  SpringSet springs;
+  int skipped_zero_area_faces = 0;     ///< faces of zero area: no mass, no springs
+  int skipped_zero_length_springs = 0; ///< coincident ends: never divided by
+};
+
+/// Builds particles and springs from a mesh (quads kept as quads: their diagonals are shear springs).
+/// Throws InputError when the fabric's density or the total mass is not positive.
+ClothModel build_cloth(const TriangleMesh& mesh, const Fabric& fabric,
+                       const ClothBuildOptions& options = {});
+
+/// A flat rectangular grid of quads: size [m] along two in-plane axes, resolution = vertices per
+/// side (≥ 2), centred at `center`, facing `normal`. Vertex (i, j) is index j·nx + i; the first axis
+/// is the normal's perpendicular closest to +X. Throws InputError for a bad size or resolution.
+TriangleMesh make_grid(const Eigen::Vector2d& size, const Eigen::Vector2i& resolution,
+                       const Eigen::Vector3d& center, const Eigen::Vector3d& normal);
+
+}  // namespace dresskit
