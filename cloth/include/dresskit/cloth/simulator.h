@@ -1,0 +1,89 @@
+#pragma once
+// The spring-mass cloth simulator: state in arrays (#V×3 positions and velocities), a step that reads
+// as named phases (forces, solve, constraints), and two integrators so far: symplectic Euler and
+// implicit (backward) Euler with one sparse linear solve per step.
+#include <Eigen/Sparse>
+#include <string>
+#include <vector>
+
+#include "dresskit/cloth/cloth_model.h"
+
+namespace dresskit {
+
+enum class Integrator { symplectic_euler, implicit_euler };
+enum class LinearSolver { conjugate_gradient, ldlt };
+/// "symplectic", "implicit"; throws InputError naming the value otherwise.
+Integrator parse_integrator(const std::string& text);
+std::string to_string(Integrator integrator);
+
+struct SimulationOptions {
+  Integrator integrator = Integrator::implicit_euler;
+  LinearSolver linear_solver = LinearSolver::conjugate_gradient;  ///< implicit Euler only
+  double dt = 1.0 / 240.0;                   ///< time step [s], > 0
+  Eigen::Vector3d gravity{0.0, -9.81, 0.0};  ///< [m/s²]
+  double air_damping = 0.0;     ///< c in f = −c m v [1/s]: mass-proportional, resolution independent
+  double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
+  bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
+  bool strain_limiting = false;    ///< position correction after each step
+  double strain_limit = 0.1;       ///< largest spring strain allowed by both mechanisms [unitless]
+  int strain_limit_iterations = 100;  ///< cap on Gauss–Seidel sweeps of the correction
+  double strain_limit_tolerance = 1e-4;  ///< springs within limit + this strain count as done
+  double cg_tolerance = 1e-8;      ///< relative residual of the conjugate gradient solve
+  int cg_max_iterations = 1000;
+  double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
+};
+
+/// Throws InputError naming the field when an option is out of range (dt ≤ 0, negative damping, ...).
+void check_options(const SimulationOptions& options);
+
+struct StepResult {
+  bool ok = true;            ///< false: the step was undone and the state is the last good one
+  std::string failure;       ///< why not ok ("non-finite state", "strain 3.2 beyond 1", ...)
+  int solver_iterations = 0; ///< CG iterations (0 for direct and explicit)
+  int strain_limit_sweeps = 0;
+  int springs_limited = 0;   ///< springs shortened by strain limiting in this step
+};
+
+class ClothSimulator {
+ public:
+  ClothSimulator(ClothModel model, SimulationOptions options);
+
+  /// Pinned vertices keep their positions exactly and have zero velocity.
+  void set_pinned(const std::vector<int>& vertices);
+  const std::vector<bool>& pinned() const { return pinned_; }
+
+  StepResult step();
+
+  const ClothModel& model() const { return model_; }
+  const SimulationOptions& options() const { return options_; }
+  const Eigen::MatrixX3d& positions() const { return x_; }
+  const Eigen::MatrixX3d& velocities() const { return v_; }
+  void set_state(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& v);
+
+  double elastic_energy() const;
+  double kinetic_energy() const;
+  double gravity_energy() const;  ///< −Σ m g·x [J]
+  /// Total force on each particle [N] (springs, damping, air, gravity); zero rows for pinned ones.
+  Eigen::MatrixX3d forces() const;
+  /// Largest and mean strain over structural springs.
+  double max_strain() const;
+  double mean_strain() const;
+
+  /// −∂f/∂x of the elastic forces, 3#V × 3#V, lower and upper parts; with clamp_geometric the
+  /// compressed springs' transverse terms are dropped (positive semi-definite result).
+  Eigen::SparseMatrix<double> stiffness_matrix(bool clamp_geometric) const;
+
+ private:
+  void add_spring_forces(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& v, Eigen::MatrixX3d& f) const;
+  void step_symplectic(StepResult& r);
+  void step_implicit(StepResult& r);
+  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
+  double allowed_length(int s) const;
+
+  ClothModel model_;
+  SimulationOptions options_;
+  Eigen::MatrixX3d x_, v_;
+  std::vector<bool> pinned_;
+};
+
+}  // namespace dresskit

@@ -1,0 +1,224 @@
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <random>
+
+#include "dresskit/cloth/simulator.h"
+#include "dresskit/mesh/errors.h"
+
+using namespace dresskit;
+
+namespace {
+// A vertical chain: particle 0 at the top (pinned), springs k from k0 at rest to k_knee at the knee.
+ClothModel chain(int n, double L0, double k0, double k_knee, std::vector<double> masses) {
+  ClothModel m;
+  m.rest_positions = Eigen::MatrixX3d::Zero(n, 3);
+  m.mass = Eigen::Map<Eigen::VectorXd>(masses.data(), n);
+  for (int k = 0; k < n; ++k) m.rest_positions(k, 1) = -k * L0;
+  for (int k = 0; k + 1 < n; ++k) {
+    m.springs.i.push_back(k);
+    m.springs.j.push_back(k + 1);
+    m.springs.rest_length.push_back(L0);
+    m.springs.k_rest.push_back(k0);
+    m.springs.k_knee.push_back(k_knee);
+    m.springs.type.push_back(SpringType::structural);
+  }
+  return m;
+}
+
+Fabric soft_fabric() {
+  Fabric f = fabric_by_name("gray-interlock");
+  return f;
+}
+
+double total_energy(const ClothSimulator& s) {
+  return s.kinetic_energy() + s.elastic_energy() + s.gravity_energy();
+}
+
+std::vector<int> top_corners(int n) { return {n * (n - 1), n * n - 1}; }  // j = n−1 row, ends
+}  // namespace
+
+TEST(Simulator, StiffnessMatrixIsMinusTheForceGradient) {
+  TriangleMesh g = make_grid({0.3, 0.3}, {4, 4}, {0, 0, 0}, {0, 0, 1});
+  ClothModel model = build_cloth(g, fabric_by_name("11oz-black-denim"));
+  SimulationOptions o;
+  o.gravity.setZero();
+  ClothSimulator sim(model, o);
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.01);
+  Eigen::MatrixX3d x = model.rest_positions;
+  for (int i = 0; i < x.size(); ++i) x.data()[i] += noise(rng);  // stretched and compressed springs
+  sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
+  const Eigen::MatrixXd K = Eigen::MatrixXd(sim.stiffness_matrix(false));
+  const double h = 1e-6;
+  Eigen::MatrixXd fd(K.rows(), K.cols());
+  for (int c = 0; c < K.cols(); ++c) {
+    Eigen::MatrixX3d xp = x, xm = x;
+    xp(c / 3, c % 3) += h;
+    xm(c / 3, c % 3) -= h;
+    sim.set_state(xp, Eigen::MatrixX3d::Zero(x.rows(), 3));
+    const Eigen::MatrixX3d fp = sim.forces();
+    sim.set_state(xm, Eigen::MatrixX3d::Zero(x.rows(), 3));
+    const Eigen::MatrixX3d fm = sim.forces();
+    for (int r = 0; r < K.rows(); ++r) fd(r, c) = -(fp(r / 3, r % 3) - fm(r / 3, r % 3)) / (2 * h);
+  }
+  EXPECT_LT((K - fd).norm(), 1e-5 * K.norm());
+  EXPECT_LT((K - K.transpose()).norm(), 1e-9 * K.norm());
+  // The clamped matrix is positive semi-definite.
+  sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
+  const Eigen::MatrixXd Kc = Eigen::MatrixXd(sim.stiffness_matrix(true));
+  EXPECT_GT(Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Kc).eigenvalues().minCoeff(), -1e-9 * Kc.norm());
+}
+
+// Static equilibrium of a hanging chain: spring s carries the weight below it, T_s(L_s) = g Σ m_below,
+// solved here by bisection on the spring law; the simulator must settle to the same lengths.
+TEST(Simulator, HangingChainMatchesTheClosedForm) {
+  const int n = 8;
+  const double L0 = 0.1, g = 9.81;
+  std::vector<double> masses = {0.05, 0.02, 0.03, 0.01, 0.04, 0.02, 0.05, 0.08};
+  const ClothModel model = chain(n, L0, 25.0, 100.0, masses);
+  for (LinearSolver solver : {LinearSolver::conjugate_gradient, LinearSolver::ldlt}) {
+    SimulationOptions o;
+    o.dt = 0.02;
+    o.air_damping = 5.0;
+    o.linear_solver = solver;
+    o.cg_tolerance = 1e-12;
+    ClothSimulator sim(model, o);
+    sim.set_pinned({0});
+    for (int step = 0; step < 5000; ++step) {
+      ASSERT_TRUE(sim.step().ok);
+      if (sim.forces().norm() < 1e-12 && sim.velocities().norm() < 1e-12) break;
+    }
+    double y = 0.0;
+    for (int s = 0; s + 1 < n; ++s) {
+      double below = 0.0;
+      for (int k = s + 1; k < n; ++k) below += masses[k];
+      const StiffnessLaw law = model.springs.law(s);
+      double lo = L0, hi = 10 * L0;
+      for (int it = 0; it < 200; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (law.tension(mid, L0) < g * below ? lo : hi) = mid;
+      }
+      y -= 0.5 * (lo + hi);
+      EXPECT_NEAR(sim.positions()(s + 1, 1), y, 1e-6 * std::abs(y)) << "particle " << s + 1;
+    }
+    // Some springs are past the knee, so the nonlinear law is exercised.
+    EXPECT_GT(sim.max_strain(), kKneeStrain);
+  }
+}
+
+TEST(Simulator, UndampedSymplecticEulerKeepsEnergyBounded) {
+  // A chain released horizontally: a swinging, stretching pendulum.
+  const int n = 5;
+  ClothModel model = chain(n, 0.1, 1000.0, 1000.0, std::vector<double>(n, 0.01));
+  for (int k = 0; k < n; ++k) model.rest_positions.row(k) << 0.1 * k, 0.0, 0.0;
+  SimulationOptions o;
+  o.integrator = Integrator::symplectic_euler;
+  o.dt = 1e-4;
+  ClothSimulator sim(model, o);
+  sim.set_pinned({0});
+  const double e0 = total_energy(sim);
+  const double scale = 0.01 * (n - 1) * 9.81 * 0.4;  // m g × the chain's length
+  double worst = 0.0;
+  for (int step = 0; step < 10000; ++step) {
+    ASSERT_TRUE(sim.step().ok);
+    worst = std::max(worst, std::abs(total_energy(sim) - e0));
+  }
+  EXPECT_LT(worst, 0.01 * scale);
+  EXPECT_GT(sim.kinetic_energy(), 0.1 * scale);  // it really moved
+}
+
+TEST(Simulator, DampedClothLosesEnergyMonotonically) {
+  const int n = 8;
+  const TriangleMesh g = make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1});
+  for (Integrator integrator : {Integrator::implicit_euler, Integrator::symplectic_euler}) {
+    SimulationOptions o;
+    o.integrator = integrator;
+    o.dt = integrator == Integrator::implicit_euler ? 1.0 / 120 : 1e-4;
+    o.air_damping = 1.0;
+    ClothSimulator sim(build_cloth(g, soft_fabric()), o);
+    sim.set_pinned(top_corners(n));
+    double previous = total_energy(sim);
+    const int steps = integrator == Integrator::implicit_euler ? 200 : 2000;
+    for (int step = 0; step < steps; ++step) {
+      ASSERT_TRUE(sim.step().ok) << step;
+      const double e = total_energy(sim);
+      EXPECT_LE(e, previous + 1e-12) << to_string(integrator) << " step " << step;
+      previous = e;
+    }
+  }
+}
+
+TEST(Simulator, StrainLimitingHoldsEveryStepAndPinsStayPut) {
+  const int n = 16;
+  const TriangleMesh g = make_grid({1.0, 1.0}, {n, n}, {0, 0, 0}, {0, 0, 1});
+  ClothBuildOptions b;
+  b.total_mass = 3.0;  // heavy: without limiting the soft knit stretches far beyond 10 %
+  const ClothModel model = build_cloth(g, soft_fabric(), b);
+  auto run = [&](bool limit, double* worst) {
+    SimulationOptions o;
+    o.dt = 1.0 / 240;
+    o.air_damping = 0.5;
+    o.strain_limiting = limit;
+    o.strain_limit = 0.1;
+    o.strain_limit_iterations = 1000;  // the first fall of this heavy cloth needs ~470
+    o.blow_up_strain = 10.0;
+    ClothSimulator sim(model, o);
+    sim.set_pinned(top_corners(n));
+    *worst = 0.0;
+    int most_sweeps = 0;
+    for (int step = 0; step < 240; ++step) {
+      const StepResult r = sim.step();
+      EXPECT_TRUE(r.ok) << r.failure;
+      most_sweeps = std::max(most_sweeps, r.strain_limit_sweeps);
+      *worst = std::max(*worst, sim.max_strain());
+      for (int p : top_corners(n)) {
+        ASSERT_EQ(sim.positions().row(p), model.rest_positions.row(p));
+        ASSERT_EQ(sim.velocities().row(p).norm(), 0.0);
+      }
+    }
+    if (limit) {
+      EXPECT_LT(most_sweeps, o.strain_limit_iterations);  // converged, not capped
+    }
+  };
+  double free_strain = 0.0, limited_strain = 0.0;
+  run(false, &free_strain);
+  run(true, &limited_strain);
+  EXPECT_GT(free_strain, 0.2);
+  EXPECT_LE(limited_strain, 0.1 + 1e-3);
+}
+
+TEST(Simulator, BlowUpIsReportedAndTheLastGoodStateKept) {
+  const int n = 6;
+  const TriangleMesh g = make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1});
+  SimulationOptions o;
+  o.integrator = Integrator::symplectic_euler;
+  o.dt = 1.0 / 24;  // far beyond the explicit limit for denim
+  ClothSimulator sim(build_cloth(g, fabric_by_name("11oz-black-denim")), o);
+  sim.set_pinned(top_corners(n));
+  bool failed = false;
+  for (int step = 0; step < 50 && !failed; ++step) {
+    const Eigen::MatrixX3d before = sim.positions();
+    const StepResult r = sim.step();
+    if (!r.ok) {
+      failed = true;
+      EXPECT_FALSE(r.failure.empty());
+      EXPECT_EQ(sim.positions(), before);
+      EXPECT_TRUE(sim.positions().allFinite());
+    }
+  }
+  EXPECT_TRUE(failed);
+}
+
+TEST(Simulator, BadOptionsAndPinsAreRejected) {
+  const ClothModel model = chain(3, 0.1, 10.0, 10.0, {1.0, 1.0, 1.0});
+  SimulationOptions o;
+  o.dt = 0.0;
+  EXPECT_THROW(ClothSimulator(model, o), InputError);
+  o = {};
+  o.air_damping = -1.0;
+  EXPECT_THROW(ClothSimulator(model, o), InputError);
+  ClothSimulator sim(model, {});
+  EXPECT_THROW(sim.set_pinned({3}), InputError);
+  EXPECT_THROW(parse_integrator("rk4"), InputError);
+}
