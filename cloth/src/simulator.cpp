@@ -53,6 +53,12 @@ void check_options(const SimulationOptions& o) {
   need(std::isfinite(o.strain_limit_tolerance) && o.strain_limit_tolerance > 0.0,
        "strain_limit_tolerance: must be positive");
   need(std::isfinite(o.cg_tolerance) && o.cg_tolerance > 0.0, "cg_tolerance: must be positive");
+  need(o.wind.allFinite() && std::isfinite(o.gust_amplitude) && std::isfinite(o.gust_frequency),
+       "wind: must be finite");
+  need(std::isfinite(o.collision_margin) && o.collision_margin >= 0.0, "collision_margin: must be ≥ 0");
+  for (const Collider& c : o.colliders) {
+    need(std::isfinite(c.friction) && c.friction >= 0.0, "collider friction: must be ≥ 0");
+  }
   need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
 }
 
@@ -105,7 +111,8 @@ Eigen::MatrixX3d ClothSimulator::forces() const {
   add_spring_forces(x_, v_, f);
   for (int i = 0; i < x_.rows(); ++i) {
     const double m = model_.mass(i);
-    f.row(i) += m * options_.gravity.transpose() - options_.air_damping * m * v_.row(i);
+    f.row(i) += m * options_.gravity.transpose() -
+                options_.air_damping * m * (v_.row(i) - wind_at(time_).transpose());
     if (pinned_[i]) f.row(i).setZero();
   }
   return f;
@@ -274,6 +281,85 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
   v_ += (x_ - x_before) / options_.dt;
 }
 
+Eigen::Vector3d ClothSimulator::wind_at(double t) const {
+  return options_.wind * (1.0 + options_.gust_amplitude * std::sin(2.0 * M_PI * options_.gust_frequency * t));
+}
+
+// Collision response with analytic colliders: particles closer than the margin are projected out
+// along the outward normal; their inward normal velocity is removed and their tangential velocity
+// reduced by Coulomb friction (μ × the removed normal speed).
+void ClothSimulator::collide(StepResult& r) {
+  const double margin = options_.collision_margin;
+  for (int i = 0; i < x_.rows(); ++i) {
+    if (pinned_[i]) continue;
+    for (const Collider& c : options_.colliders) {
+      Eigen::Vector3d n;
+      const double d = c.distance(row(x_, i), &n);
+      if (d >= margin) continue;
+      ++r.collisions;
+      x_.row(i) += (margin - d) * n.transpose();
+      Eigen::Vector3d v = row(v_, i);
+      const double vn = v.dot(n);
+      if (vn < 0.0) {
+        v -= vn * n;
+        const Eigen::Vector3d vt = v - v.dot(n) * n;
+        const double t = vt.norm();
+        if (t > 0.0) v -= std::min(1.0, c.friction * -vn / t) * vt;
+      }
+      v_.row(i) = v.transpose();
+    }
+  }
+}
+
+double ClothSimulator::static_residual() const {
+  Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(x_.rows(), 3);
+  add_spring_forces(x_, Eigen::MatrixX3d::Zero(x_.rows(), 3), f);
+  double worst = 0.0;
+  for (int i = 0; i < x_.rows(); ++i) {
+    if (pinned_[i]) continue;
+    Eigen::Vector3d fi = row(f, i) + model_.mass(i) * options_.gravity;
+    // A particle resting on a collider is held by it: only the tangential residual counts.
+    for (const Collider& c : options_.colliders) {
+      Eigen::Vector3d n;
+      if (c.distance(row(x_, i), &n) <= options_.collision_margin * 1.01 && fi.dot(n) < 0.0) {
+        fi -= fi.dot(n) * n;
+      }
+    }
+    worst = std::max(worst, fi.norm());
+  }
+  const double weight = model_.mass.maxCoeff() * std::max(options_.gravity.norm(), 1e-12);
+  return worst / weight;
+}
+
+SettleResult ClothSimulator::settle(const SettleOptions& o) {
+  SettleResult result;
+  double previous = elastic_energy(), next_record = 0.0;
+  while (result.time < o.max_time) {
+    const StepResult r = step();
+    if (!r.ok) {
+      result.stopped_reason = r.failure;
+      break;
+    }
+    ++result.steps;
+    result.time += options_.dt;
+    const double e = elastic_energy();
+    if (result.time >= next_record) {
+      result.energy_history.push_back(e);
+      next_record += o.record_every;
+    }
+    const bool calm = std::abs(e - previous) <= o.energy_tolerance * std::abs(e) + 1e-12;
+    previous = e;
+    if (calm && static_residual() <= o.force_tolerance) {
+      result.converged = true;
+      result.stopped_reason = "converged";
+      break;
+    }
+  }
+  if (result.stopped_reason.empty()) result.stopped_reason = "max_time";
+  result.final_residual = static_residual();
+  return result;
+}
+
 StepResult ClothSimulator::step() {
   StepResult r;
   const Eigen::MatrixX3d x0 = x_, v0 = v_;
@@ -283,6 +369,7 @@ StepResult ClothSimulator::step() {
     const Eigen::MatrixX3d x_stepped = x_;
     limit_strain(x_stepped, r);
   }
+  if (r.ok && !options_.colliders.empty()) collide(r);
   if (r.ok && (!x_.allFinite() || !v_.allFinite())) {
     r.ok = false;
     r.failure = "non-finite state (NaN or infinity)";
@@ -298,6 +385,8 @@ StepResult ClothSimulator::step() {
   if (!r.ok) {  // keep the last good state
     x_ = x0;
     v_ = v0;
+  } else {
+    time_ += options_.dt;
   }
   return r;
 }

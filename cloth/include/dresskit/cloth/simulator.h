@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "dresskit/cloth/cloth_model.h"
+#include "dresskit/cloth/collider.h"
 
 namespace dresskit {
 
@@ -21,7 +22,12 @@ struct SimulationOptions {
   LinearSolver linear_solver = LinearSolver::conjugate_gradient;  ///< implicit Euler only
   double dt = 1.0 / 240.0;                   ///< time step [s], > 0
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  ///< [m/s²]
-  double air_damping = 0.0;     ///< c in f = −c m v [1/s]: mass-proportional, resolution independent
+  double air_damping = 0.0;     ///< c in f = −c m (v − wind) [1/s]: mass-proportional, resolution independent
+  Eigen::Vector3d wind = Eigen::Vector3d::Zero();  ///< air velocity [m/s], acts through air_damping
+  double gust_amplitude = 0.0;  ///< wind(t) = wind (1 + a sin 2π f t) [unitless]
+  double gust_frequency = 0.0;  ///< f [Hz]
+  std::vector<Collider> colliders;
+  double collision_margin = 0.002;  ///< particles are kept this far outside colliders [m]
   double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
   bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
   bool strain_limiting = false;    ///< position correction after each step
@@ -42,6 +48,23 @@ struct StepResult {
   int solver_iterations = 0; ///< CG iterations (0 for direct and explicit)
   int strain_limit_sweeps = 0;
   int springs_limited = 0;   ///< springs shortened by strain limiting in this step
+  int collisions = 0;        ///< particles pushed out of colliders in this step
+};
+
+struct SettleOptions {
+  double max_time = 10.0;        ///< [s] simulated time at most
+  double energy_tolerance = 1e-6;  ///< |ΔE_elastic| per step relative to E_elastic (plus 1e-12 J)
+  double force_tolerance = 1e-3;   ///< largest static residual force relative to the largest weight
+  double record_every = 0.0;     ///< [s] between energy_history samples; 0 = every step
+};
+
+struct SettleResult {
+  int steps = 0;
+  double time = 0.0;                  ///< [s] simulated
+  std::string stopped_reason;         ///< "converged", "max_time", or the failure of a step
+  bool converged = false;
+  double final_residual = 0.0;        ///< largest static residual force / largest weight
+  std::vector<double> energy_history; ///< elastic energy samples [J]
 };
 
 class ClothSimulator {
@@ -53,6 +76,12 @@ class ClothSimulator {
   const std::vector<bool>& pinned() const { return pinned_; }
 
   StepResult step();
+  /// Steps until the elastic energy and the static residual force settle (a static drape), the
+  /// time runs out or a step fails (then the last good state is kept).
+  SettleResult settle(const SettleOptions& options);
+  /// Largest static residual force (elastic + gravity, on free particles) over the largest weight.
+  double static_residual() const;
+  double time() const { return time_; }
 
   const ClothModel& model() const { return model_; }
   const SimulationOptions& options() const { return options_; }
@@ -78,12 +107,15 @@ class ClothSimulator {
   void step_symplectic(StepResult& r);
   void step_implicit(StepResult& r);
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
+  void collide(StepResult& r);
+  Eigen::Vector3d wind_at(double t) const;
   double allowed_length(int s) const;
 
   ClothModel model_;
   SimulationOptions options_;
   Eigen::MatrixX3d x_, v_;
   std::vector<bool> pinned_;
+  double time_ = 0.0;
 };
 
 }  // namespace dresskit

@@ -1,0 +1,75 @@
+#include "dresskit/cloth/collider.h"
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "dresskit/mesh/errors.h"
+
+namespace dresskit {
+
+Collider Collider::plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double friction) {
+  if (!point.allFinite() || !normal.allFinite() || normal.norm() < 1e-12) {
+    throw InputError("plane collider: point and normal must be finite, the normal non-zero");
+  }
+  Collider c;
+  c.kind = Kind::plane;
+  c.point = point;
+  c.normal = normal.normalized();
+  c.friction = friction;
+  return c;
+}
+
+Collider Collider::sphere(const Eigen::Vector3d& centre, double radius, double friction) {
+  if (!centre.allFinite() || !(radius > 0.0) || !std::isfinite(radius)) {
+    throw InputError("sphere collider: centre must be finite and radius positive");
+  }
+  Collider c;
+  c.kind = Kind::sphere;
+  c.point = centre;
+  c.radius = radius;
+  c.friction = friction;
+  return c;
+}
+
+Collider Collider::box(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_size, double friction) {
+  if (!centre.allFinite() || !half_size.allFinite() || half_size.minCoeff() <= 0.0) {
+    throw InputError("box collider: centre must be finite and every half size positive");
+  }
+  Collider c;
+  c.kind = Kind::box;
+  c.point = centre;
+  c.half_size = half_size;
+  c.friction = friction;
+  return c;
+}
+
+double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const {
+  switch (kind) {
+    case Kind::plane:
+      *outward = normal;
+      return (p - point).dot(normal);
+    case Kind::sphere: {
+      const Eigen::Vector3d d = p - point;
+      const double r = d.norm();
+      *outward = r > 1e-12 ? Eigen::Vector3d(d / r) : Eigen::Vector3d::UnitY();
+      return r - radius;
+    }
+    case Kind::box: {
+      const Eigen::Vector3d d = p - point;
+      const Eigen::Vector3d q = d.cwiseAbs() - half_size;
+      if (q.maxCoeff() > 0.0) {  // outside: distance to the nearest point of the box
+        const Eigen::Vector3d outside = q.cwiseMax(0.0).cwiseProduct(d.cwiseSign());
+        *outward = outside.normalized();
+        return outside.norm();
+      }
+      int axis = 0;  // inside: leave through the nearest face
+      q.maxCoeff(&axis);
+      *outward = Eigen::Vector3d::Zero();
+      (*outward)(axis) = d(axis) >= 0.0 ? 1.0 : -1.0;
+      return q(axis);
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace dresskit
