@@ -4,8 +4,11 @@
 
 #include <chrono>
 #include <filesystem>
+#include <cmath>
 #include <iostream>
+#include <limits>
 
+#include "dresskit/cloth/scene.h"
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
@@ -195,6 +198,96 @@ int run_demo(const std::string& dir, const MannequinOptions& body_options,
   return 0;
 }
 
+// Runs a cloth scene for its duration, writing result.obj, optional frames and report.json. A failed
+// step (NaN, blow-up) stops the run: the last good state is written and the exit code is 4.
+int run_simulate(const std::string& scene_path, const std::string& dir, bool frames) {
+  using Clock = std::chrono::steady_clock;
+  ClothScene scene = load_cloth_scene(scene_path);
+  std::error_code ec;
+  if (!fs::create_directories(dir, ec) && ec) throw OutputError(dir + ": cannot create directory: " + ec.message());
+  ClothSimulator sim(scene.model, scene.simulation);
+  sim.set_pinned(scene.pins);
+  const double dt = scene.simulation.dt;
+  const int steps_total = static_cast<int>(std::ceil(scene.duration / dt - 1e-9));
+  std::vector<double> energy;
+  std::string stopped = "duration reached", failure;
+  bool nan = false;
+  int steps = 0, frame_count = 0, cg_iterations = 0;
+  auto write_frame = [&](int index) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.obj", index);
+    write_file_atomically((fs::path(dir) / name).string(), cloth_obj_text(sim.positions(), scene.faces, scene.model.springs));
+  };
+  const auto t0 = Clock::now();
+  energy.push_back(sim.elastic_energy());
+  if (frames) write_frame(0);
+  while (steps < steps_total) {
+    const StepResult r = sim.step();
+    if (!r.ok) {
+      failure = r.failure;
+      nan = r.failure.find("non-finite") != std::string::npos;
+      stopped = "failed: " + r.failure;
+      break;
+    }
+    cg_iterations += r.solver_iterations;
+    ++steps;
+    // Frame k is the first state at or after time k / fps.
+    if (steps * dt >= (frame_count + 1) / scene.fps - 1e-9 * dt) {
+      ++frame_count;
+      energy.push_back(sim.elastic_energy());
+      if (frames) write_frame(frame_count);
+    }
+  }
+  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
+  write_file_atomically((fs::path(dir) / "result.obj").string(),
+                        cloth_obj_text(sim.positions(), scene.faces, scene.model.springs));
+  double closest = std::numeric_limits<double>::infinity();
+  for (const Collider& c : scene.simulation.colliders) {
+    Eigen::Vector3d n;
+    for (int i = 0; i < sim.positions().rows(); ++i) closest = std::min(closest, c.distance(sim.positions().row(i).transpose(), &n));
+  }
+  const json report = {
+      {"scene", scene_path},
+      {"integrator", to_string(scene.simulation.integrator)},
+      {"linear_solver", scene.simulation.linear_solver == LinearSolver::ldlt ? "ldlt" : "cg"},
+      {"fabric", scene.fabric_name},
+      {"vertices", sim.positions().rows()},
+      {"springs", {{"structural", scene.model.springs.count(SpringType::structural)},
+                   {"shear", scene.model.springs.count(SpringType::shear)},
+                   {"bending", scene.model.springs.count(SpringType::bending)}}},
+      {"skipped", {{"zero_area_faces", scene.model.skipped_zero_area_faces},
+                   {"zero_length_springs", scene.model.skipped_zero_length_springs}}},
+      {"force_terms", {{"gravity", scene.simulation.gravity.norm() > 0},
+                       {"air_damping", scene.simulation.air_damping > 0},
+                       {"wind", scene.simulation.wind.norm() > 0},
+                       {"spring_damping", scene.simulation.spring_damping > 0},
+                       {"dynamic_stiffness", scene.simulation.dynamic_stiffness},
+                       {"strain_limiting", scene.simulation.strain_limiting},
+                       {"colliders", scene.simulation.colliders.size()}}},
+      {"dt", dt},
+      {"steps", steps},
+      {"frames", frame_count},
+      {"wall_seconds", wall},
+      {"seconds_per_frame", frame_count ? wall / frame_count : 0.0},
+      {"cg_iterations", cg_iterations},
+      {"max_strain", sim.max_strain()},
+      {"mean_strain", sim.mean_strain()},
+      {"energy_history", energy},
+      {"final_residual", sim.static_residual()},
+      {"closest_collider_distance_m", std::isfinite(closest) ? json(closest) : json(nullptr)},
+      {"stopped_reason", stopped},
+      {"nan_detected", nan}};
+  write_file_atomically((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
+  std::cout << "simulated " << steps << " steps (" << frame_count << " frames) in " << wall << " s; max strain "
+            << sim.max_strain() << "; " << stopped << "\n";
+  if (!failure.empty()) {
+    std::cerr << "dress-a-mesh: " << scene_path << ": simulation stopped after " << steps << " steps: " << failure
+              << " (last good state written)\n";
+    return static_cast<int>(ExitCode::simulation_failed);
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -240,6 +333,14 @@ int main(int argc, char** argv) {
   demo->add_option("--ease", garment_options.ease, "garment ease over the body [m]")
       ->capture_default_str();
 
+  std::string scene_path, simulate_dir;
+  bool simulate_frames = false;
+  auto* simulate = app.add_subcommand("simulate", "run a cloth scene (JSON, see docs/scenes.md); writes "
+                                                  "result.obj, report.json and optional frames");
+  simulate->add_option("SCENE", scene_path, "scene file (.json)")->required();
+  simulate->add_option("-o,--output", simulate_dir, "output directory")->required();
+  simulate->add_flag("--frames", simulate_frames, "also write frame_NNNNN.obj at the scene's fps");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -256,6 +357,7 @@ int main(int argc, char** argv) {
   try {
     if (*info) return run_info(info_args, info_json);
     if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
+    if (*simulate) return run_simulate(scene_path, simulate_dir, simulate_frames);
     if (*demo) {
       body_options.pose = parse_pose(pose);
       garment_options.edge_length = body_options.edge_length;

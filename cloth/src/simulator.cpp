@@ -176,6 +176,34 @@ void ClothSimulator::step_symplectic(StepResult&) {
   }
 }
 
+void ClothSimulator::build_pattern() {
+  const int n = static_cast<int>(x_.rows());
+  const SpringSet& s = model_.springs;
+  std::vector<Eigen::Triplet<double>> t;
+  t.reserve(static_cast<size_t>(s.size()) * 36 + 9 * static_cast<size_t>(n));
+  for (int k = 0; k < s.size(); ++k) add_spring_blocks(t, s.i[k], s.j[k], Eigen::Matrix3d::Zero());
+  for (int v = 0; v < n; ++v) add_block(t, v, v, Eigen::Matrix3d::Zero());
+  system_.resize(3 * n, 3 * n);
+  system_.setFromTriplets(t.begin(), t.end());
+  system_.makeCompressed();
+  const int* inner = system_.innerIndexPtr();
+  const int* outer = system_.outerIndexPtr();
+  // Offset of entry (row, col) in the value array; rows of a 3×3 block are contiguous in a column.
+  auto offset = [&](int row, int col) {
+    return static_cast<int>(std::lower_bound(inner + outer[col], inner + outer[col + 1], row) - inner);
+  };
+  spring_offsets_.resize(static_cast<size_t>(s.size()));
+  for (int k = 0; k < s.size(); ++k) {
+    const int blocks[4][2] = {{s.i[k], s.i[k]}, {s.j[k], s.j[k]}, {s.i[k], s.j[k]}, {s.j[k], s.i[k]}};
+    for (int b = 0; b < 4; ++b)
+      for (int c = 0; c < 3; ++c) spring_offsets_[k][3 * b + c] = offset(3 * blocks[b][0], 3 * blocks[b][1] + c);
+  }
+  vertex_offsets_.resize(static_cast<size_t>(n));
+  for (int v = 0; v < n; ++v)
+    for (int c = 0; c < 3; ++c) vertex_offsets_[v][c] = offset(3 * v, 3 * v + c);
+  previous_dv_ = Eigen::VectorXd::Zero(3 * n);
+}
+
 // Linearised backward Euler (Baraff & Witkin 1998): (M + h D + h² K) Δv = h (f0 − h K v0),
 // with K = −∂f/∂x (compressed springs' transverse terms clamped, so the system is SPD) and
 // D = −∂f/∂v. Pinned rows and columns are replaced by the identity (Δv = 0).
@@ -183,8 +211,13 @@ void ClothSimulator::step_implicit(StepResult& r) {
   const double h = options_.dt;
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
-  std::vector<Eigen::Triplet<double>> t;
-  t.reserve(static_cast<size_t>(s.size()) * 36 + 3 * n);
+  if (system_.rows() != 3 * n) build_pattern();
+  double* values = system_.valuePtr();
+  std::fill(values, values + system_.nonZeros(), 0.0);
+  auto put = [&](const std::array<int, 12>& off, int block, const Eigen::Matrix3d& B) {
+    for (int c = 0; c < 3; ++c)
+      for (int r3 = 0; r3 < 3; ++r3) values[off[3 * block + c] + r3] += B(r3, c);
+  };
   Eigen::VectorXd Kv = Eigen::VectorXd::Zero(3 * n);
   for (int k = 0; k < s.size(); ++k) {
     const int i = s.i[k], j = s.j[k];
@@ -197,24 +230,23 @@ void ClothSimulator::step_implicit(StepResult& r) {
       const Eigen::Vector3d u = (xj - xi).normalized();
       B += h * options_.spring_damping * s.k_rest[k] * u * u.transpose();
     }
-    if (pinned_[i] || pinned_[j]) {
-      // Keep only the diagonal block of the free end: pinned rows/columns become the identity.
-      if (!pinned_[i]) add_block(t, i, i, B);
-      if (!pinned_[j]) add_block(t, j, j, B);
-    } else {
-      add_spring_blocks(t, i, j, B);
+    // Pinned rows and columns stay zero here (their diagonal becomes the identity below).
+    if (!pinned_[i]) put(spring_offsets_[k], 0, B);
+    if (!pinned_[j]) put(spring_offsets_[k], 1, B);
+    if (!pinned_[i] && !pinned_[j]) {
+      put(spring_offsets_[k], 2, -B);
+      put(spring_offsets_[k], 3, -B);
     }
   }
   const Eigen::MatrixX3d f0 = forces();
   Eigen::VectorXd rhs(3 * n);
   for (int i = 0; i < n; ++i) {
     const double diag = pinned_[i] ? 1.0 : model_.mass(i) * (1.0 + h * options_.air_damping);
-    for (int c = 0; c < 3; ++c) t.emplace_back(3 * i + c, 3 * i + c, diag);
+    for (int c = 0; c < 3; ++c) values[vertex_offsets_[i][c] + c] += diag;
     rhs.segment<3>(3 * i) = pinned_[i] ? Eigen::Vector3d::Zero()
                                        : Eigen::Vector3d(h * (row(f0, i) - h * Kv.segment<3>(3 * i)));
   }
-  Eigen::SparseMatrix<double> A(3 * n, 3 * n);
-  A.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseMatrix<double>& A = system_;
   Eigen::VectorXd dv;
   if (options_.linear_solver == LinearSolver::ldlt) {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
@@ -229,7 +261,8 @@ void ClothSimulator::step_implicit(StepResult& r) {
     solver.setTolerance(options_.cg_tolerance);
     solver.setMaxIterations(options_.cg_max_iterations);
     solver.compute(A);
-    dv = solver.solve(rhs);
+    // Warm start from the previous step's Δv: consecutive steps change little.
+    dv = solver.solveWithGuess(rhs, previous_dv_);
     r.solver_iterations = static_cast<int>(solver.iterations());
     if (solver.info() != Eigen::Success) {
       r.ok = false;
@@ -237,6 +270,7 @@ void ClothSimulator::step_implicit(StepResult& r) {
                   " iterations";
       return;
     }
+    previous_dv_ = dv;
   }
   for (int i = 0; i < n; ++i) {
     if (pinned_[i]) continue;
@@ -285,19 +319,36 @@ Eigen::Vector3d ClothSimulator::wind_at(double t) const {
   return options_.wind * (1.0 + options_.gust_amplitude * std::sin(2.0 * M_PI * options_.gust_frequency * t));
 }
 
-// Collision response with analytic colliders: particles closer than the margin are projected out
-// along the outward normal; their inward normal velocity is removed and their tangential velocity
-// reduced by Coulomb friction (μ × the removed normal speed).
-void ClothSimulator::collide(StepResult& r) {
+// Collision response with analytic colliders: a particle closer than the margin is pushed out along
+// the outward normal where it entered (found by bisection on its path during the step; the nearest
+// surface point is wrong for a particle that went deeper than its distance to another face of a box),
+// or along the nearest normal if it was already inside. Its inward normal velocity is removed and its
+// tangential velocity reduced by Coulomb friction (μ × the removed normal speed).
+void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
   const double margin = options_.collision_margin;
   for (int i = 0; i < x_.rows(); ++i) {
     if (pinned_[i]) continue;
     for (const Collider& c : options_.colliders) {
       Eigen::Vector3d n;
-      const double d = c.distance(row(x_, i), &n);
+      const Eigen::Vector3d x = row(x_, i);
+      const double d = c.distance(x, &n);
       if (d >= margin) continue;
       ++r.collisions;
-      x_.row(i) += (margin - d) * n.transpose();
+      const Eigen::Vector3d x0 = row(x_start, i);
+      Eigen::Vector3d unused;
+      if (c.distance(x0, &unused) >= margin) {
+        double lo = 0.0, hi = 1.0;
+        for (int it = 0; it < 40; ++it) {
+          const double mid = 0.5 * (lo + hi);
+          (c.distance(x0 + mid * (x - x0), &unused) >= margin ? lo : hi) = mid;
+        }
+        const Eigen::Vector3d entry = x0 + lo * (x - x0);
+        c.distance(entry, &n);
+        x_.row(i) -= std::min(0.0, (x - entry).dot(n)) * n.transpose();  // back to the entry plane
+        if (c.distance(row(x_, i), &unused) < margin) x_.row(i) = entry.transpose();  // curved surfaces
+      } else {
+        x_.row(i) += (margin - d) * n.transpose();
+      }
       Eigen::Vector3d v = row(v_, i);
       const double vn = v.dot(n);
       if (vn < 0.0) {
@@ -369,7 +420,7 @@ StepResult ClothSimulator::step() {
     const Eigen::MatrixX3d x_stepped = x_;
     limit_strain(x_stepped, r);
   }
-  if (r.ok && !options_.colliders.empty()) collide(r);
+  if (r.ok && !options_.colliders.empty()) collide(x0, r);
   if (r.ok && (!x_.allFinite() || !v_.allFinite())) {
     r.ok = false;
     r.failure = "non-finite state (NaN or infinity)";

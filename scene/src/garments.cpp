@@ -153,12 +153,14 @@ TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const Garment
   const TopologyReport t = analyse_topology(mesh);
   if (!t.manifold || t.num_components != 1 || t.num_boundary_loops != loops ||
       t.euler_characteristic != 2 - loops) {
+    const int handles = (2 * t.num_components - t.euler_characteristic - t.num_boundary_loops) / 2;
     throw InputError("garment " + to_string(kind) + ": ease " + std::to_string(options.ease) +
                      " m on a body of height " + std::to_string(H) + " m and girth " +
                      std::to_string(body.options().girth) + " gives " +
-                     std::to_string(t.num_components) + " pieces with " +
-                     std::to_string(t.num_boundary_loops) + " openings instead of one piece with " +
-                     std::to_string(loops) + " (try a smaller ease)");
+                     std::to_string(t.num_components) + " piece(s), " +
+                     std::to_string(t.num_boundary_loops) + " openings and " +
+                     std::to_string(std::max(handles, 0)) + " handle(s) instead of one piece with " +
+                     std::to_string(loops) + " openings and no handle (try a smaller ease)");
   }
   mesh.label_names = garment_part_names();
   mesh.labels.resize(mesh.num_vertices());

@@ -169,3 +169,47 @@ TEST(Cli, DemoWritesTheSceneAndAReport) {
   EXPECT_EQ(load_mesh(dir.file("demo/mannequin.glb")).num_faces(),
             report["meshes"]["mannequin"]["faces"].get<int>());
 }
+
+TEST(Cli, SimulateWritesResultFramesAndReport) {
+  test::TempDir dir;
+  write(dir.file("chain.json"), R"({"cloth": {"chain": {"particles": 10, "spacing": 0.05, "top": [0, 1, 0],
+    "direction": [1, 0, 0]}, "total_mass": 0.1, "stiffness": 100, "pins": [0]},
+    "simulation": {"dt": 0.005, "duration": 0.5, "fps": 10, "air_damping": 0.5}})");
+  const CliRun r = run(dir, "simulate " + dir.file("chain.json") + " -o " + dir.file("out") + " --frames");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));
+  for (const char* key : {"integrator", "dt", "steps", "frames", "wall_seconds", "seconds_per_frame",
+                          "max_strain", "mean_strain", "energy_history", "final_residual",
+                          "stopped_reason", "nan_detected"}) {
+    EXPECT_TRUE(report.contains(key)) << key;
+  }
+  EXPECT_EQ(report["steps"], 100);
+  EXPECT_EQ(report["frames"], 5);
+  EXPECT_FALSE(report["nan_detected"].get<bool>());
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/result.obj")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/frame_00005.obj")));
+}
+
+TEST(Cli, SimulateBlowUpKeepsTheLastGoodStateAndExits4) {
+  test::TempDir dir;
+  write(dir.file("stiff.json"), R"({"cloth": {"grid": {"size": [0.5, 0.5], "resolution": [8, 8]},
+    "fabric": "11oz-black-denim", "pins": [[0, 7], [7, 7]]},
+    "simulation": {"integrator": "symplectic", "dt": 0.04, "duration": 1.0}})");
+  const CliRun r = run(dir, "simulate " + dir.file("stiff.json") + " -o " + dir.file("out"));
+  EXPECT_EQ(r.code, 4) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  const std::string obj = slurp(dir.file("out/result.obj"));
+  EXPECT_EQ(obj.find("nan"), std::string::npos);
+  const auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));
+  EXPECT_NE(report["stopped_reason"].get<std::string>().find("failed"), std::string::npos);
+}
+
+TEST(Cli, SimulateBadSceneExits2NamingTheKey) {
+  test::TempDir dir;
+  write(dir.file("bad.json"), R"({"cloth": {"grid": {"size": [1, 1], "resolution": [4, 4]}, "fabric": "silk"}})");
+  const CliRun r = run(dir, "simulate " + dir.file("bad.json") + " -o " + dir.file("out"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1);
+  EXPECT_NE(r.err.find("silk"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}

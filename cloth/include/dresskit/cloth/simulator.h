@@ -3,6 +3,7 @@
 // as named phases (forces, solve, constraints), and two integrators so far: symplectic Euler and
 // implicit (backward) Euler with one sparse linear solve per step.
 #include <Eigen/Sparse>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -107,7 +108,8 @@ class ClothSimulator {
   void step_symplectic(StepResult& r);
   void step_implicit(StepResult& r);
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
-  void collide(StepResult& r);
+  void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
+  void build_pattern();
   Eigen::Vector3d wind_at(double t) const;
   double allowed_length(int s) const;
 
@@ -116,6 +118,13 @@ class ClothSimulator {
   Eigen::MatrixX3d x_, v_;
   std::vector<bool> pinned_;
   double time_ = 0.0;
+  /// The implicit system's matrix, its sparsity fixed at the first implicit step; each step writes
+  /// values through precomputed offsets instead of rebuilding it from triplets (which cost over half
+  /// of a step's time).
+  Eigen::SparseMatrix<double> system_;
+  std::vector<std::array<int, 12>> spring_offsets_;  ///< per spring: blocks ii, jj, ij, ji × 3 columns
+  std::vector<std::array<int, 3>> vertex_offsets_;   ///< per vertex: its diagonal block's 3 columns
+  Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
 };
 
 }  // namespace dresskit

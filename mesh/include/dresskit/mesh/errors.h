@@ -15,6 +15,7 @@ enum class ExitCode : int {
   internal_error = 1,  ///< a bug or an unexpected exception
   bad_input = 2,       ///< unreadable, malformed or unusable input file or value
   output_failed = 3,   ///< an output could not be written (nothing partial is left)
+  simulation_failed = 4,  ///< a simulation step blew up or went NaN; the last good state was written
   usage = 64,          ///< command-line usage error (unknown option, missing argument)
 };
 

@@ -1,0 +1,30 @@
+#pragma once
+// Cloth scenes as JSON (docs/scenes.md): a cloth (grid, mesh or chain) with a fabric and pins,
+// analytic colliders, and simulation settings. Unknown keys are errors that name the key.
+#include <string>
+#include <vector>
+
+#include "dresskit/cloth/cloth_model.h"
+#include "dresskit/cloth/simulator.h"
+
+namespace dresskit {
+
+struct ClothScene {
+  ClothModel model;
+  std::vector<int> pins;           ///< vertex indices
+  SimulationOptions simulation;
+  double duration = 2.0;           ///< [s] simulated
+  double fps = 24.0;               ///< frames per simulated second
+  std::string fabric_name;
+  Eigen::MatrixX3i faces;          ///< for output; empty for a chain (written as a polyline)
+};
+
+/// Reads and checks a scene file; mesh and fabric paths are relative to the scene's folder. Throws
+/// InputError "<file>: <key>: <problem>" for a malformed, unknown or out-of-range entry.
+ClothScene load_cloth_scene(const std::string& path);
+
+/// OBJ text of the cloth at positions x: faces, or a polyline when there are none.
+std::string cloth_obj_text(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
+                           const SpringSet& springs);
+
+}  // namespace dresskit

@@ -1,0 +1,285 @@
+#include "dresskit/cloth/scene.h"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+
+namespace dresskit {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+// Reads one JSON object, naming every problem by file and key path.
+class Reader {
+ public:
+  Reader(std::string file, const json& j, std::string path) : file_(std::move(file)), j_(j), path_(std::move(path)) {
+    if (!j_.is_object()) fail("must be an object");
+  }
+  [[noreturn]] void fail(const std::string& what, const std::string& key = "") const {
+    throw InputError(file_ + ": " + name(key) + (path_.empty() && key.empty() ? "" : ": ") + what);
+  }
+  std::string name(const std::string& key) const {
+    return path_.empty() ? key : key.empty() ? path_ : path_ + "." + key;
+  }
+  void allow(std::initializer_list<const char*> keys) const {
+    std::set<std::string> ok(keys.begin(), keys.end());
+    for (const auto& [key, value] : j_.items()) {
+      (void)value;
+      if (!ok.count(key)) {
+        std::string list;
+        for (const auto& k : ok) list += (list.empty() ? "" : ", ") + k;
+        fail("unknown key (known: " + list + ")", key);
+      }
+    }
+  }
+  bool has(const char* key) const { return j_.contains(key); }
+  const json& at(const char* key) const { return j_.at(key); }
+  Reader object(const char* key) const { return Reader(file_, j_.at(key), name(key)); }
+  double number(const char* key, double fallback, double lo, double hi) const {
+    if (!has(key)) return fallback;
+    if (!j_[key].is_number()) fail("must be a number", key);
+    const double v = j_[key].get<double>();
+    if (!std::isfinite(v) || v < lo || v > hi) {
+      fail(std::to_string(v) + " is outside " + std::to_string(lo) + " – " + std::to_string(hi), key);
+    }
+    return v;
+  }
+  bool boolean(const char* key, bool fallback) const {
+    if (!has(key)) return fallback;
+    if (!j_[key].is_boolean()) fail("must be true or false", key);
+    return j_[key].get<bool>();
+  }
+  std::string text(const char* key, const std::string& fallback) const {
+    if (!has(key)) return fallback;
+    if (!j_[key].is_string()) fail("must be a string", key);
+    return j_[key].get<std::string>();
+  }
+  template <int N>
+  Eigen::Matrix<double, N, 1> vector(const char* key, const Eigen::Matrix<double, N, 1>& fallback) const {
+    if (!has(key)) return fallback;
+    const json& a = j_[key];
+    if (!a.is_array() || a.size() != N) fail("must be an array of " + std::to_string(N) + " numbers", key);
+    Eigen::Matrix<double, N, 1> v;
+    for (int k = 0; k < N; ++k) {
+      if (!a[k].is_number() || !std::isfinite(a[k].get<double>())) fail("must hold finite numbers", key);
+      v(k) = a[k].get<double>();
+    }
+    return v;
+  }
+  const std::string& file() const { return file_; }
+
+ private:
+  std::string file_;
+  const json& j_;
+  std::string path_;
+};
+
+ClothModel make_chain(const Reader& c, double scale, double total_mass) {
+  c.allow({"particles", "spacing", "top", "direction"});
+  const int n = static_cast<int>(c.number("particles", 10, 2, 1e6));
+  const double spacing = c.number("spacing", 0.1, 1e-6, 1e6) * scale;
+  const Eigen::Vector3d top = c.vector<3>("top", Eigen::Vector3d::Zero()) * scale;
+  Eigen::Vector3d dir = c.vector<3>("direction", Eigen::Vector3d(0, -1, 0));
+  if (dir.norm() < 1e-12) c.fail("must not be zero", "direction");
+  dir.normalize();
+  ClothModel m;
+  m.rest_positions.resize(n, 3);
+  for (int k = 0; k < n; ++k) m.rest_positions.row(k) = (top + k * spacing * dir).transpose();
+  m.mass = Eigen::VectorXd::Constant(n, total_mass / n);
+  return m;
+}
+
+}  // namespace
+
+ClothScene load_cloth_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open scene file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
+  }
+  const Reader root(path, j, "");
+  root.allow({"units", "cloth", "colliders", "simulation"});
+  const fs::path folder = fs::path(path).parent_path();
+  double scale = 1.0;
+  if (root.has("units")) {
+    scale = root.at("units").is_number() ? root.number("units", 1.0, 1e-12, 1e12)
+                                         : Units::parse(root.text("units", "m")).metres_per_unit;
+  }
+
+  ClothScene scene;
+  if (!root.has("cloth")) root.fail("missing", "cloth");
+  const Reader cloth = root.object("cloth");
+  cloth.allow({"grid", "mesh", "chain", "fabric", "fabric_file", "pins", "total_mass", "warp",
+               "bending_springs", "stiffness"});
+  // Fabric: built-in by name, or by name from a user file.
+  scene.fabric_name = cloth.text("fabric", "gray-interlock");
+  Fabric fabric;
+  if (cloth.has("fabric_file")) {
+    const auto fabrics = load_fabrics((folder / cloth.text("fabric_file", "")).string());
+    auto it = std::find_if(fabrics.begin(), fabrics.end(), [&](const Fabric& f) { return f.name == scene.fabric_name; });
+    if (it == fabrics.end()) cloth.fail("'" + scene.fabric_name + "' is not in the fabric file", "fabric");
+    fabric = *it;
+  } else {
+    fabric = fabric_by_name(scene.fabric_name);
+  }
+  ClothBuildOptions build;
+  build.total_mass = cloth.number("total_mass", 0.0, 0.0, 1e6);
+  build.warp_direction = cloth.vector<3>("warp", Eigen::Vector3d::UnitX());
+  build.bending_springs = cloth.boolean("bending_springs", true);
+
+  const int shapes = cloth.has("grid") + cloth.has("mesh") + cloth.has("chain");
+  if (shapes != 1) cloth.fail("exactly one of grid, mesh or chain is needed");
+  int nx = 0;
+  if (cloth.has("grid")) {
+    const Reader g = cloth.object("grid");
+    g.allow({"size", "resolution", "center", "normal"});
+    const Eigen::Vector2d size = g.vector<2>("size", Eigen::Vector2d(1, 1)) * scale;
+    const Eigen::Vector2d res = g.vector<2>("resolution", Eigen::Vector2d(32, 32));
+    if (res.minCoeff() < 2 || res.maxCoeff() > 4096 || res != res.array().round().matrix()) {
+      g.fail("must be two whole numbers 2–4096", "resolution");
+    }
+    if (size.minCoeff() <= 0) g.fail("must be positive", "size");
+    nx = static_cast<int>(res.x());
+    const TriangleMesh mesh = make_grid(size, res.cast<int>(), g.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
+                                        g.vector<3>("normal", Eigen::Vector3d::UnitY()));
+    scene.model = build_cloth(mesh, fabric, build);
+  } else if (cloth.has("mesh")) {
+    LoadOptions load;
+    load.units.metres_per_unit = scale;
+    const TriangleMesh mesh = load_mesh((folder / cloth.text("mesh", "")).string(), load);
+    scene.model = build_cloth(mesh, fabric, build);
+  } else {
+    if (!(build.total_mass > 0)) cloth.fail("a chain needs a positive total_mass", "total_mass");
+    scene.model = make_chain(cloth.object("chain"), scale, build.total_mass);
+    // Chain springs: linear at the fabric's warp stiffness per unit width × spacing / L0 (a strip
+    // one spacing wide), or an explicit "stiffness" [N/m].
+    const int n = static_cast<int>(scene.model.rest_positions.rows());
+    const double L0 = (scene.model.rest_positions.row(1) - scene.model.rest_positions.row(0)).norm();
+    const double k_rest = cloth.number("stiffness", fabric.stiffness_at_rest(0.0), 1e-9, 1e12);
+    const double k_knee = cloth.has("stiffness") ? k_rest : fabric.stiffness_at_knee(0.0);
+    for (int k = 0; k + 1 < n; ++k) {
+      SpringSet& s = scene.model.springs;
+      s.i.push_back(k);
+      s.j.push_back(k + 1);
+      s.rest_length.push_back(L0);
+      s.k_rest.push_back(k_rest);
+      s.k_knee.push_back(k_knee);
+      s.type.push_back(SpringType::structural);
+    }
+  }
+  if (cloth.has("stiffness") && !cloth.has("chain")) cloth.fail("only a chain takes an explicit stiffness", "stiffness");
+  scene.faces = scene.model.faces;
+
+  const int nv = static_cast<int>(scene.model.rest_positions.rows());
+  if (cloth.has("pins")) {
+    const json& pins = cloth.at("pins");
+    if (!pins.is_array()) cloth.fail("must be an array", "pins");
+    for (const json& p : pins) {
+      int index = -1;
+      if (nx > 0 && p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number_integer()) {
+        const int i = p[0].get<int>(), jj = p[1].get<int>();
+        if (i < 0 || i >= nx || jj < 0 || jj >= nv / nx) {
+          cloth.fail("grid index [" + std::to_string(i) + ", " + std::to_string(jj) + "] is out of range", "pins");
+        }
+        index = jj * nx + i;
+      } else if (p.is_number_integer()) {
+        index = p.get<int>();
+      } else {
+        cloth.fail(nx > 0 ? "entries must be [i, j] grid indices" : "entries must be vertex indices", "pins");
+      }
+      if (index < 0 || index >= nv) {
+        cloth.fail("vertex " + std::to_string(index) + " is out of range (" + std::to_string(nv) + " vertices)", "pins");
+      }
+      scene.pins.push_back(index);
+    }
+  }
+
+  if (root.has("colliders")) {
+    if (!root.at("colliders").is_array()) root.fail("must be an array", "colliders");
+    for (size_t k = 0; k < root.at("colliders").size(); ++k) {
+      const Reader c(path, root.at("colliders")[k], "colliders[" + std::to_string(k) + "]");
+      const std::string type = c.text("type", "");
+      const double friction = c.number("friction", 0.3, 0.0, 10.0);
+      if (type == "sphere") {
+        c.allow({"type", "center", "radius", "friction"});
+        scene.simulation.colliders.push_back(Collider::sphere(
+            c.vector<3>("center", Eigen::Vector3d::Zero()) * scale, c.number("radius", 0.0, 1e-9, 1e9) * scale, friction));
+      } else if (type == "plane") {
+        c.allow({"type", "point", "normal", "friction"});
+        scene.simulation.colliders.push_back(Collider::plane(c.vector<3>("point", Eigen::Vector3d::Zero()) * scale,
+                                                             c.vector<3>("normal", Eigen::Vector3d::UnitY()), friction));
+      } else if (type == "box") {
+        c.allow({"type", "center", "half_size", "friction"});
+        scene.simulation.colliders.push_back(Collider::box(c.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
+                                                           c.vector<3>("half_size", Eigen::Vector3d::Zero()) * scale, friction));
+      } else {
+        c.fail("'" + type + "' is not sphere, plane or box", "type");
+      }
+    }
+  }
+
+  if (root.has("simulation")) {
+    const Reader s = root.object("simulation");
+    s.allow({"integrator", "linear_solver", "dt", "duration", "fps", "gravity", "strain_limit",
+             "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
+             "gust_amplitude", "gust_frequency", "collision_margin"});
+    SimulationOptions& o = scene.simulation;
+    o.integrator = parse_integrator(s.text("integrator", "implicit"));
+    const std::string solver = s.text("linear_solver", "cg");
+    if (solver == "cg") o.linear_solver = LinearSolver::conjugate_gradient;
+    else if (solver == "ldlt") o.linear_solver = LinearSolver::ldlt;
+    else s.fail("'" + solver + "' is not cg or ldlt", "linear_solver");
+    o.dt = s.number("dt", o.dt, 1e-7, 1.0);
+    if (!(o.dt > 0)) s.fail("must be positive", "dt");
+    scene.duration = s.number("duration", scene.duration, 0.0, 1e5);
+    scene.fps = s.number("fps", scene.fps, 1e-3, 1e4);
+    o.gravity = s.vector<3>("gravity", o.gravity);
+    // "strain_limit" alone switches strain limiting on, as in the example.
+    o.strain_limit = s.number("strain_limit", o.strain_limit, 1e-6, 10.0);
+    o.strain_limiting = s.boolean("strain_limiting", s.has("strain_limit"));
+    o.dynamic_stiffness = s.boolean("dynamic_stiffness", false);
+    o.air_damping = s.number("air_damping", 0.1, 0.0, 1e6);
+    o.spring_damping = s.number("spring_damping", 0.0, 0.0, 1e3);
+    o.wind = s.vector<3>("wind", o.wind);
+    o.gust_amplitude = s.number("gust_amplitude", 0.0, 0.0, 100.0);
+    o.gust_frequency = s.number("gust_frequency", 0.0, 0.0, 1e4);
+    o.collision_margin = s.number("collision_margin", o.collision_margin, 0.0, 1.0) * scale;
+  }
+  check_options(scene.simulation);
+  return scene;
+}
+
+std::string cloth_obj_text(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, const SpringSet& springs) {
+  std::string out = "# dresskit cloth: metres, +Y up\n";
+  char buf[32];
+  for (int i = 0; i < x.rows(); ++i) {
+    out += 'v';
+    for (int k = 0; k < 3; ++k) {
+      out += ' ';
+      out.append(buf, std::to_chars(buf, buf + sizeof buf, x(i, k)).ptr);
+    }
+    out += '\n';
+  }
+  for (int f = 0; f < faces.rows(); ++f) {
+    out += "f " + std::to_string(faces(f, 0) + 1) + " " + std::to_string(faces(f, 1) + 1) + " " +
+           std::to_string(faces(f, 2) + 1) + "\n";
+  }
+  if (faces.rows() == 0) {
+    for (int k = 0; k < springs.size(); ++k) {
+      out += "l " + std::to_string(springs.i[k] + 1) + " " + std::to_string(springs.j[k] + 1) + "\n";
+    }
+  }
+  return out;
+}
+
+}  // namespace dresskit
