@@ -1,0 +1,69 @@
+#!/usr/bin/python3
+"""Plots dresskit's benchmark CSVs to PNG (needs Debian's python3-matplotlib; a development aid).
+
+usage: scripts/plot_bench.py stability IN.csv OUT.png
+       scripts/plot_bench.py error IN.csv OUT.png
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def stability(rows, out):
+    integrators = sorted({r["integrator"] for r in rows})
+    ks = sorted({float(r["k_per_mass"]) for r in rows})
+    dts = sorted({float(r["dt"]) for r in rows})
+    fig, axes = plt.subplots(1, len(integrators), figsize=(5 * len(integrators), 4), squeeze=False)
+    for ax, name in zip(axes[0], integrators):
+        grid = [[0] * len(dts) for _ in ks]
+        for r in rows:
+            if r["integrator"] == name:
+                grid[ks.index(float(r["k_per_mass"]))][dts.index(float(r["dt"]))] = int(r["stable"])
+        ax.imshow(grid, origin="lower", cmap="RdYlGn", vmin=0, vmax=1, aspect="auto")
+        ax.set_xticks(range(len(dts)), ["1/%d" % round(1 / d) for d in dts])
+        ax.set_yticks(range(len(ks)), ["1e%d" % round(__import__("math").log10(k)) for k in ks])
+        ax.set_xlabel("time step [s]")
+        ax.set_ylabel("stiffness / particle mass [N/m/kg]")
+        ax.set_title("%s Euler: green = stable" % name)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def error(rows, out):
+    fig, ax = plt.subplots(figsize=(7, 5))
+    series = {}
+    unstable = set()
+    for r in rows:
+        if r["stable"] != "1":
+            unstable.add(r["integrator"])
+            continue
+        key = r["integrator"] + ("" if r["integrator"] == "symplectic" else ", CG tol %s" % r["cg_tolerance"])
+        series.setdefault(key, []).append((float(r["ms_per_frame"]), float(r["relative_error"]), r["label"].split(" tol")[0]))
+    for key, pts in sorted(series.items()):
+        pts.sort()
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=key)
+        if key.endswith("0.001"):
+            for p in pts:
+                ax.annotate(p[2], (p[0], p[1]), fontsize=7, xytext=(-40, -3), textcoords="offset points")
+    ax.axhline(0.01, color="grey", ls="--", lw=0.8)
+    ax.axvline(5.0, color="grey", ls="--", lw=0.8)
+    ax.set_xlabel("wall time per 1/60 s frame [ms], one core")
+    ax.set_ylabel("RMS position error / cloth size at t = 1 s")
+    title = "81x81 hanging cloth: error against run time"
+    if unstable:
+        title += "\n(unstable at every tested step: %s)" % ", ".join(sorted(unstable))
+    ax.set_title(title)
+    ax.set_xlim(1, 1000)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+if __name__ == "__main__":
+    kind, src, out = sys.argv[1:4]
+    rows = list(csv.DictReader(open(src)))
+    {"stability": stability, "error": error}[kind](rows, out)
