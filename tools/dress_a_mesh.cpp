@@ -208,11 +208,11 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
   ClothSimulator sim(scene.model, scene.simulation);
   sim.set_pinned(scene.pins);
   const double dt = scene.simulation.dt;
-  const int steps_total = static_cast<int>(std::ceil(scene.duration / dt - 1e-9));
   std::vector<double> energy;
   std::string stopped = "duration reached", failure;
   bool nan = false;
-  int steps = 0, frame_count = 0, cg_iterations = 0;
+  int steps = 0, frame_count = 0, cg_iterations = 0, retries = 0;
+  double smallest_dt = dt;
   auto write_frame = [&](int index) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.obj", index);
@@ -221,8 +221,9 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
   const auto t0 = Clock::now();
   energy.push_back(sim.elastic_energy());
   if (frames) write_frame(0);
-  while (steps < steps_total) {
+  while (sim.time() < scene.duration - 1e-6 * dt) {
     const StepResult r = sim.step();
+    retries += r.retries;
     if (!r.ok) {
       failure = r.failure;
       nan = r.failure.find("non-finite") != std::string::npos;
@@ -230,9 +231,10 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
       break;
     }
     cg_iterations += r.solver_iterations;
+    smallest_dt = std::min(smallest_dt, r.dt);
     ++steps;
     // Frame k is the first state at or after time k / fps.
-    if (steps * dt >= (frame_count + 1) / scene.fps - 1e-9 * dt) {
+    if (sim.time() >= (frame_count + 1) / scene.fps - 1e-6 * dt) {
       ++frame_count;
       energy.push_back(sim.elastic_energy());
       if (frames) write_frame(frame_count);
@@ -265,6 +267,10 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
                        {"strain_limiting", scene.simulation.strain_limiting},
                        {"colliders", scene.simulation.colliders.size()}}},
       {"dt", dt},
+      {"adaptive", scene.simulation.adaptive},
+      {"smallest_dt", smallest_dt},
+      {"step_retries", retries},
+      {"simulated_seconds", sim.time()},
       {"steps", steps},
       {"frames", frame_count},
       {"wall_seconds", wall},

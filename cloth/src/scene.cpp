@@ -232,7 +232,8 @@ ClothScene load_cloth_scene(const std::string& path) {
     const Reader s = root.object("simulation");
     s.allow({"integrator", "linear_solver", "dt", "duration", "fps", "gravity", "strain_limit",
              "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
-             "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance"});
+             "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
+             "max_strain_change"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -255,6 +256,9 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.gust_frequency = s.number("gust_frequency", 0.0, 0.0, 1e4);
     o.collision_margin = s.number("collision_margin", o.collision_margin, 0.0, 1.0) * scale;
     o.cg_tolerance = s.number("cg_tolerance", o.cg_tolerance, 1e-14, 0.1);
+    o.adaptive = s.boolean("adaptive", false);
+    o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);
+    o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
   }
   check_options(scene.simulation);
   return scene;

@@ -60,6 +60,8 @@ void check_options(const SimulationOptions& o) {
     need(std::isfinite(c.friction) && c.friction >= 0.0, "collider friction: must be ≥ 0");
   }
   need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
+  need(std::isfinite(o.dt_min) && o.dt_min > 0.0 && o.dt_min <= o.dt, "dt_min: must be positive and at most dt");
+  need(std::isfinite(o.max_strain_change) && o.max_strain_change > 0.0, "max_strain_change: must be positive");
 }
 
 ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
@@ -171,8 +173,8 @@ void ClothSimulator::step_symplectic(StepResult&) {
   const Eigen::MatrixX3d f = forces();
   for (int i = 0; i < x_.rows(); ++i) {
     if (pinned_[i]) continue;
-    v_.row(i) += options_.dt / model_.mass(i) * f.row(i);
-    x_.row(i) += options_.dt * v_.row(i);
+    v_.row(i) += dt_ / model_.mass(i) * f.row(i);
+    x_.row(i) += dt_ * v_.row(i);
   }
 }
 
@@ -208,7 +210,7 @@ void ClothSimulator::build_pattern() {
 // with K = −∂f/∂x (compressed springs' transverse terms clamped, so the system is SPD) and
 // D = −∂f/∂v. Pinned rows and columns are replaced by the identity (Δv = 0).
 void ClothSimulator::step_implicit(StepResult& r) {
-  const double h = options_.dt;
+  const double h = dt_;
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
   if (system_.rows() != 3 * n) build_pattern();
@@ -312,7 +314,7 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
     r.springs_limited += violated;
     if (violated == 0) break;
   }
-  v_ += (x_ - x_before) / options_.dt;
+  v_ += (x_ - x_before) / dt_;
 }
 
 Eigen::Vector3d ClothSimulator::wind_at(double t) const {
@@ -392,7 +394,7 @@ SettleResult ClothSimulator::settle(const SettleOptions& o) {
       break;
     }
     ++result.steps;
-    result.time += options_.dt;
+    result.time += r.dt;
     const double e = elastic_energy();
     if (result.time >= next_record) {
       result.energy_history.push_back(e);
@@ -411,8 +413,10 @@ SettleResult ClothSimulator::settle(const SettleOptions& o) {
   return result;
 }
 
-StepResult ClothSimulator::step() {
+StepResult ClothSimulator::try_step(double dt) {
   StepResult r;
+  r.dt = dt;
+  dt_ = dt;
   const Eigen::MatrixX3d x0 = x_, v0 = v_;
   if (options_.integrator == Integrator::symplectic_euler) step_symplectic(r);
   else step_implicit(r);
@@ -436,10 +440,54 @@ StepResult ClothSimulator::step() {
   if (!r.ok) {  // keep the last good state
     x_ = x0;
     v_ = v0;
-  } else {
-    time_ += options_.dt;
   }
   return r;
+}
+
+StepResult ClothSimulator::step() {
+  if (dt_ <= 0.0) dt_ = options_.dt;
+  if (!options_.adaptive) {
+    StepResult r = try_step(options_.dt);
+    if (r.ok) time_ += r.dt;
+    return r;
+  }
+  double dt = dt_;
+  int retries = 0;
+  for (;;) {
+    const double strain_before = max_strain();
+    const Eigen::MatrixX3d x0 = x_, v0 = v_;
+    StepResult r = try_step(dt);
+    const bool jump = r.ok && std::abs(max_strain() - strain_before) > options_.max_strain_change;
+    if (r.ok && !jump) {
+      r.retries = retries;
+      time_ += dt;
+      calm_steps_ = std::abs(max_strain() - strain_before) < 0.25 * options_.max_strain_change ? calm_steps_ + 1 : 0;
+      dt_ = dt;
+      if (calm_steps_ >= 10) {
+        dt_ = std::min(options_.dt, 1.25 * dt);
+        calm_steps_ = 0;
+      }
+      return r;
+    }
+    if (jump) {
+      x_ = x0;
+      v_ = v0;
+    }
+    if (dt * 0.5 < options_.dt_min) {
+      if (r.ok) {  // a strain jump at the smallest step: undone above, report it
+        r.ok = false;
+        r.failure = "strain changed by more than " + std::to_string(options_.max_strain_change) +
+                    " even at the smallest step";
+      }
+      r.failure += " (adaptive step at its minimum " + std::to_string(options_.dt_min) + " s)";
+      r.retries = retries;
+      dt_ = dt;
+      return r;
+    }
+    dt *= 0.5;
+    ++retries;
+    calm_steps_ = 0;
+  }
 }
 
 }  // namespace dresskit

@@ -222,3 +222,43 @@ TEST(Simulator, BadOptionsAndPinsAreRejected) {
   EXPECT_THROW(sim.set_pinned({3}), InputError);
   EXPECT_THROW(parse_integrator("rk4"), InputError);
 }
+
+TEST(Simulator, AdaptiveStepRecoversWhereAFixedStepBlowsUp) {
+  const int n = 6;
+  const TriangleMesh g = make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1});
+  const ClothModel model = build_cloth(g, fabric_by_name("11oz-black-denim"));
+  SimulationOptions o;
+  o.integrator = Integrator::symplectic_euler;
+  o.dt = 1.0 / 24;  // far beyond the explicit limit: fails at once without adaptation
+  ClothSimulator fixed(model, o);
+  fixed.set_pinned(top_corners(n));
+  bool fixed_failed = false;
+  for (int step = 0; step < 50 && !fixed_failed; ++step) fixed_failed = !fixed.step().ok;
+  EXPECT_TRUE(fixed_failed);
+
+  o.adaptive = true;
+  ClothSimulator adaptive(model, o);
+  adaptive.set_pinned(top_corners(n));
+  double smallest = o.dt;
+  while (adaptive.time() < 0.25) {
+    const StepResult r = adaptive.step();
+    ASSERT_TRUE(r.ok) << r.failure;
+    smallest = std::min(smallest, r.dt);
+    ASSERT_LE(r.dt, o.dt);
+  }
+  EXPECT_LT(smallest, o.dt / 16);                 // it had to shrink
+  EXPECT_LT(adaptive.max_strain(), 0.05);         // and stayed physical
+  EXPECT_TRUE(adaptive.positions().allFinite());
+}
+
+TEST(Simulator, AdaptiveStepGrowsBackWhenCalm) {
+  ClothModel m = chain(3, 0.1, 50.0, 50.0, {0.02, 0.02, 0.02});
+  SimulationOptions o;
+  o.adaptive = true;
+  o.dt = 0.01;
+  o.air_damping = 5.0;
+  ClothSimulator sim(m, o);
+  sim.set_pinned({0});
+  for (int i = 0; i < 200; ++i) ASSERT_TRUE(sim.step().ok);
+  EXPECT_DOUBLE_EQ(sim.current_dt(), o.dt);  // nothing dramatic happened: full step throughout
+}

@@ -41,6 +41,12 @@ struct SimulationOptions {
   double cg_tolerance = 1e-4;
   int cg_max_iterations = 1000;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
+  /// Adaptive time step: a failed step, or one whose largest strain changes by more than
+  /// max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm steps
+  /// (change below a quarter of that) the step grows by 1.25× back up to dt.
+  bool adaptive = false;
+  double dt_min = 1e-6;            ///< [s]
+  double max_strain_change = 0.05; ///< per step [unitless]
 };
 
 /// Throws InputError naming the field when an option is out of range (dt ≤ 0, negative damping, ...).
@@ -53,6 +59,8 @@ struct StepResult {
   int strain_limit_sweeps = 0;
   int springs_limited = 0;   ///< springs shortened by strain limiting in this step
   int collisions = 0;        ///< particles pushed out of colliders in this step
+  double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
+  int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
 };
 
 struct SettleOptions {
@@ -86,6 +94,8 @@ class ClothSimulator {
   /// Largest static residual force (elastic + gravity, on free particles) over the largest weight.
   double static_residual() const;
   double time() const { return time_; }
+  /// The step the next step() will try [s]: options().dt unless adaptive stepping shrank it.
+  double current_dt() const { return dt_; }
 
   const ClothModel& model() const { return model_; }
   const SimulationOptions& options() const { return options_; }
@@ -113,6 +123,7 @@ class ClothSimulator {
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
   void build_pattern();
+  StepResult try_step(double dt);
   Eigen::Vector3d wind_at(double t) const;
   double allowed_length(int s) const;
 
@@ -121,6 +132,8 @@ class ClothSimulator {
   Eigen::MatrixX3d x_, v_;
   std::vector<bool> pinned_;
   double time_ = 0.0;
+  double dt_ = 0.0;
+  int calm_steps_ = 0;
   /// The implicit system's matrix, its sparsity fixed at the first implicit step; each step writes
   /// values through precomputed offsets instead of rebuilding it from triplets (which cost over half
   /// of a step's time).
