@@ -96,6 +96,17 @@ int main(int argc, char** argv) {
       record(o, label);
     }
   }
+  for (int inv : {60, 120, 240}) {
+    SimulationOptions o = base;
+    o.integrator = Integrator::newton;
+    o.dt = 1.0 / inv;
+    o.cg_tolerance = 1e-3;
+    o.newton_tolerance = 1e-5;
+    o.newton_iterations = 4;
+    char label[64];
+    std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, o.cg_tolerance);
+    record(o, label);
+  }
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
 }

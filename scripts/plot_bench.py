@@ -28,7 +28,8 @@ def stability(rows, out):
         ax.set_yticks(range(len(ks)), ["1e%d" % round(__import__("math").log10(k)) for k in ks])
         ax.set_xlabel("time step [s]")
         ax.set_ylabel("stiffness / particle mass [N/m/kg]")
-        ax.set_title("%s Euler: green = stable" % name)
+        titles = {"implicit": "implicit Euler", "newton": "Newton (backward Euler)", "symplectic": "symplectic Euler"}
+        ax.set_title("%s: green = stable" % titles.get(name, name))
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 

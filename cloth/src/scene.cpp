@@ -233,7 +233,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     s.allow({"integrator", "linear_solver", "dt", "duration", "fps", "gravity", "strain_limit",
              "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
-             "max_strain_change"});
+             "max_strain_change", "newton_iterations", "newton_tolerance"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -257,6 +257,8 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.collision_margin = s.number("collision_margin", o.collision_margin, 0.0, 1.0) * scale;
     o.cg_tolerance = s.number("cg_tolerance", o.cg_tolerance, 1e-14, 0.1);
     o.adaptive = s.boolean("adaptive", false);
+    o.newton_iterations = static_cast<int>(s.number("newton_iterations", o.newton_iterations, 1, 1000));
+    o.newton_tolerance = s.number("newton_tolerance", o.newton_tolerance, 1e-15, 1.0);
     o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
   }

@@ -33,11 +33,17 @@ void add_spring_blocks(std::vector<Eigen::Triplet<double>>& t, int i, int j, con
 Integrator parse_integrator(const std::string& text) {
   if (text == "symplectic" || text == "symplectic_euler") return Integrator::symplectic_euler;
   if (text == "implicit" || text == "implicit_euler") return Integrator::implicit_euler;
-  throw InputError("integrator: '" + text + "' is not symplectic or implicit");
+  if (text == "newton") return Integrator::newton;
+  throw InputError("integrator: '" + text + "' is not symplectic, implicit or newton");
 }
 
 std::string to_string(Integrator integrator) {
-  return integrator == Integrator::symplectic_euler ? "symplectic" : "implicit";
+  switch (integrator) {
+    case Integrator::symplectic_euler: return "symplectic";
+    case Integrator::implicit_euler: return "implicit";
+    case Integrator::newton: return "newton";
+  }
+  return "?";
 }
 
 void check_options(const SimulationOptions& o) {
@@ -60,6 +66,8 @@ void check_options(const SimulationOptions& o) {
     need(std::isfinite(c.friction) && c.friction >= 0.0, "collider friction: must be ≥ 0");
   }
   need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
+  need(o.newton_iterations > 0, "newton_iterations: must be positive");
+  need(std::isfinite(o.newton_tolerance) && o.newton_tolerance > 0.0, "newton_tolerance: must be positive");
   need(std::isfinite(o.dt_min) && o.dt_min > 0.0 && o.dt_min <= o.dt, "dt_min: must be positive and at most dt");
   need(std::isfinite(o.max_strain_change) && o.max_strain_change > 0.0, "max_strain_change: must be positive");
 }
@@ -203,13 +211,13 @@ void ClothSimulator::build_pattern() {
   vertex_offsets_.resize(static_cast<size_t>(n));
   for (int v = 0; v < n; ++v)
     for (int c = 0; c < 3; ++c) vertex_offsets_[v][c] = offset(3 * v, 3 * v + c);
-  previous_dv_ = Eigen::VectorXd::Zero(3 * n);
 }
 
-// Linearised backward Euler (Baraff & Witkin 1998): (M + h D + h² K) Δv = h (f0 − h K v0),
-// with K = −∂f/∂x (compressed springs' transverse terms clamped, so the system is SPD) and
-// D = −∂f/∂v. Pinned rows and columns are replaced by the identity (Δv = 0).
-void ClothSimulator::step_implicit(StepResult& r) {
+// Writes A = M (1 + h c) + h² K (+ h D for spring damping when with_spring_damping) into system_,
+// with K = −∂f/∂x at the current positions (compressed springs' transverse terms clamped: SPD) and
+// pinned rows and columns replaced by the identity. If Kv is given, it receives K v (unclamped
+// blocks are not needed: the same clamped K is used on both sides).
+void ClothSimulator::assemble_system(bool with_spring_damping, Eigen::VectorXd* Kv) {
   const double h = dt_;
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
@@ -220,15 +228,17 @@ void ClothSimulator::step_implicit(StepResult& r) {
     for (int c = 0; c < 3; ++c)
       for (int r3 = 0; r3 < 3; ++r3) values[off[3 * block + c] + r3] += B(r3, c);
   };
-  Eigen::VectorXd Kv = Eigen::VectorXd::Zero(3 * n);
+  if (Kv) Kv->setZero(3 * n);
   for (int k = 0; k < s.size(); ++k) {
     const int i = s.i[k], j = s.j[k];
     const Eigen::Vector3d xi = row(x_, i), xj = row(x_, j);
     Eigen::Matrix3d B = -spring_jacobian(s.law(k), s.rest_length[k], xi, xj, allowed_length(k), true);
-    Kv.segment<3>(3 * i) += B * (row(v_, i) - row(v_, j));
-    Kv.segment<3>(3 * j) += B * (row(v_, j) - row(v_, i));
+    if (Kv) {
+      Kv->segment<3>(3 * i) += B * (row(v_, i) - row(v_, j));
+      Kv->segment<3>(3 * j) += B * (row(v_, j) - row(v_, i));
+    }
     B *= h * h;
-    if (options_.spring_damping > 0.0 && (xj - xi).norm() > 1e-12) {
+    if (with_spring_damping && options_.spring_damping > 0.0 && (xj - xi).norm() > 1e-12) {
       const Eigen::Vector3d u = (xj - xi).normalized();
       B += h * options_.spring_damping * s.k_rest[k] * u * u.transpose();
     }
@@ -240,45 +250,135 @@ void ClothSimulator::step_implicit(StepResult& r) {
       put(spring_offsets_[k], 3, -B);
     }
   }
-  const Eigen::MatrixX3d f0 = forces();
-  Eigen::VectorXd rhs(3 * n);
   for (int i = 0; i < n; ++i) {
     const double diag = pinned_[i] ? 1.0 : model_.mass(i) * (1.0 + h * options_.air_damping);
     for (int c = 0; c < 3; ++c) values[vertex_offsets_[i][c] + c] += diag;
-    rhs.segment<3>(3 * i) = pinned_[i] ? Eigen::Vector3d::Zero()
-                                       : Eigen::Vector3d(h * (row(f0, i) - h * Kv.segment<3>(3 * i)));
   }
-  const Eigen::SparseMatrix<double>& A = system_;
-  Eigen::VectorXd dv;
+}
+
+// Solves system_ · sol = rhs with the chosen solver (CG starts from guess).
+bool ClothSimulator::solve_system(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess,
+                                  Eigen::VectorXd& sol, StepResult& r) {
   if (options_.linear_solver == LinearSolver::ldlt) {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system_);
     if (solver.info() != Eigen::Success) {
       r.ok = false;
       r.failure = "LDLT factorisation failed";
-      return;
+      return false;
     }
-    dv = solver.solve(rhs);
-  } else {
-    Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver;
-    solver.setTolerance(options_.cg_tolerance);
-    solver.setMaxIterations(options_.cg_max_iterations);
-    solver.compute(A);
-    // Warm start from the previous step's Δv: consecutive steps change little.
-    dv = solver.solveWithGuess(rhs, previous_dv_);
-    r.solver_iterations = static_cast<int>(solver.iterations());
-    if (solver.info() != Eigen::Success) {
-      r.ok = false;
-      r.failure = "conjugate gradient did not converge in " + std::to_string(options_.cg_max_iterations) +
-                  " iterations";
-      return;
-    }
-    previous_dv_ = dv;
+    sol = solver.solve(rhs);
+    return true;
   }
+  Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver;
+  solver.setTolerance(options_.cg_tolerance);
+  solver.setMaxIterations(options_.cg_max_iterations);
+  solver.compute(system_);
+  sol = solver.solveWithGuess(rhs, guess);
+  r.solver_iterations += static_cast<int>(solver.iterations());
+  if (solver.info() != Eigen::Success) {
+    r.ok = false;
+    r.failure = "conjugate gradient did not converge in " + std::to_string(options_.cg_max_iterations) + " iterations";
+    return false;
+  }
+  return true;
+}
+
+// Linearised backward Euler (Baraff & Witkin 1998): (M + h D + h² K) Δv = h (f0 − h K v0),
+// with K = −∂f/∂x (compressed springs' transverse terms clamped, so the system is SPD) and
+// D = −∂f/∂v. Pinned rows and columns are replaced by the identity (Δv = 0).
+void ClothSimulator::step_implicit(StepResult& r) {
+  const double h = dt_;
+  const int n = static_cast<int>(x_.rows());
+  Eigen::VectorXd Kv;
+  assemble_system(true, &Kv);
+  const Eigen::MatrixX3d f0 = forces();
+  Eigen::VectorXd rhs(3 * n);
+  for (int i = 0; i < n; ++i) {
+    rhs.segment<3>(3 * i) = pinned_[i] ? Eigen::Vector3d::Zero()
+                                       : Eigen::Vector3d(h * (row(f0, i) - h * Kv.segment<3>(3 * i)));
+  }
+  Eigen::VectorXd dv;
+  if (previous_dv_.size() != rhs.size()) previous_dv_ = Eigen::VectorXd::Zero(rhs.size());
+  if (!solve_system(rhs, previous_dv_, dv, r)) return;
+  previous_dv_ = dv;  // consecutive steps change little: the next solve starts here
   for (int i = 0; i < n; ++i) {
     if (pinned_[i]) continue;
     v_.row(i) += dv.segment<3>(3 * i).transpose();
     x_.row(i) += h * v_.row(i);
   }
+}
+
+// Backward Euler as minimisation (the stiff-robust integrator): x minimises the incremental potential
+//   G(x) = Σ m/(2h²) |x − x0 − h v0|² + Σ c m/(2h) |x − x0 − h w|² + E(x) − Σ m g·x,
+// whose stationarity is exactly backward Euler with air damping c and wind w. Newton steps with the
+// clamped (SPD) Hessian; h²·Hessian is implicit Euler's matrix. A backtracking line search keeps G
+// decreasing, which is what keeps very stiff springs at large steps stable. Spring damping and
+// dynamic stiffness have no potential and are not applied by this integrator.
+double ClothSimulator::incremental_potential(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x0,
+                                            const Eigen::MatrixX3d& v0) const {
+  const double h = dt_;
+  const Eigen::Vector3d w = wind_at(time_ + h);
+  double g = 0.0;
+  for (int i = 0; i < x.rows(); ++i) {
+    const double m = model_.mass(i);
+    g += m / (2 * h * h) * (row(x, i) - row(x0, i) - h * row(v0, i)).squaredNorm();
+    g += options_.air_damping * m / (2 * h) * (row(x, i) - row(x0, i) - h * w).squaredNorm();
+    g -= m * options_.gravity.dot(row(x, i));
+  }
+  const SpringSet& s = model_.springs;
+  for (int k = 0; k < s.size(); ++k) g += spring_energy(s.law(k), s.rest_length[k], row(x, s.i[k]), row(x, s.j[k]));
+  return g;
+}
+
+void ClothSimulator::step_newton(StepResult& r) {
+  const double h = dt_;
+  const int n = static_cast<int>(x_.rows());
+  const Eigen::MatrixX3d x0 = x_, v0 = v_;
+  const Eigen::Vector3d w = wind_at(time_ + h);
+  // Start from the explicit prediction: often close, and a good first iterate.
+  for (int i = 0; i < n; ++i)
+    if (!pinned_[i]) x_.row(i) += h * v_.row(i);
+  double G = incremental_potential(x_, x0, v0);
+  const SpringSet& s = model_.springs;
+  for (int it = 0; it < options_.newton_iterations; ++it) {
+    // −h² ∇G: h² × (spring and gravity forces) − M (x − x0 − h v0) − h c M (x − x0 − h w).
+    Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(n, 3);
+    for (int k = 0; k < s.size(); ++k) {
+      const Eigen::Vector3d fi = spring_force(s.law(k), s.rest_length[k], row(x_, s.i[k]), row(x_, s.j[k]));
+      f.row(s.i[k]) += fi.transpose();
+      f.row(s.j[k]) -= fi.transpose();
+    }
+    Eigen::VectorXd rhs(3 * n);
+    for (int i = 0; i < n; ++i) {
+      const double m = model_.mass(i);
+      const Eigen::Vector3d gi = h * h * (row(f, i) + m * options_.gravity) - m * (row(x_, i) - row(x0, i) - h * row(v0, i)) -
+                                 h * options_.air_damping * m * (row(x_, i) - row(x0, i) - h * w);
+      rhs.segment<3>(3 * i) = pinned_[i] ? Eigen::Vector3d::Zero() : gi;
+    }
+    v_ = (x_ - x0) / h;  // the Hessian does not depend on v; kept consistent for forces()
+    assemble_system(false, nullptr);
+    Eigen::VectorXd d;
+    if (!solve_system(rhs, Eigen::VectorXd::Zero(rhs.size()), d, r)) return;
+    Eigen::MatrixX3d step(n, 3);
+    for (int i = 0; i < n; ++i) step.row(i) = d.segment<3>(3 * i).transpose();
+    // Backtracking (Armijo) on G; the direction descends since the matrix is SPD.
+    const double slope = -rhs.dot(d) / (h * h);
+    double alpha = 1.0, G_new = G;
+    Eigen::MatrixX3d x_try;
+    for (int ls = 0; ls < 30; ++ls, alpha *= 0.5) {
+      x_try = x_ + alpha * step;
+      G_new = incremental_potential(x_try, x0, v0);
+      if (G_new <= G + 1e-4 * alpha * slope) break;
+    }
+    x_ = x_try;
+    const double moved = (alpha * step).rowwise().norm().maxCoeff();
+    G = G_new;
+    ++r.newton_iterations;
+    if (moved < options_.newton_tolerance) break;
+  }
+  v_ = (x_ - x0) / h;
+  for (int i = 0; i < n; ++i)
+    if (pinned_[i]) v_.row(i).setZero();
 }
 
 // Position-based strain limiting: Gauss–Seidel sweeps over structural and shear springs, shortening
@@ -418,8 +518,11 @@ StepResult ClothSimulator::try_step(double dt) {
   r.dt = dt;
   dt_ = dt;
   const Eigen::MatrixX3d x0 = x_, v0 = v_;
-  if (options_.integrator == Integrator::symplectic_euler) step_symplectic(r);
-  else step_implicit(r);
+  switch (options_.integrator) {
+    case Integrator::symplectic_euler: step_symplectic(r); break;
+    case Integrator::implicit_euler: step_implicit(r); break;
+    case Integrator::newton: step_newton(r); break;
+  }
   if (r.ok && options_.strain_limiting) {
     const Eigen::MatrixX3d x_stepped = x_;
     limit_strain(x_stepped, r);

@@ -1,7 +1,8 @@
 #pragma once
 // The spring-mass cloth simulator: state in arrays (#V×3 positions and velocities), a step that reads
-// as named phases (forces, solve, constraints), and two integrators so far: symplectic Euler and
-// implicit (backward) Euler with one sparse linear solve per step.
+// as named phases (forces, solve, constraints), and three integrators: symplectic Euler, implicit
+// (backward) Euler with one sparse linear solve per step, and Newton's method with line search on
+// backward Euler's incremental potential (stiff-robust).
 #include <Eigen/Sparse>
 #include <array>
 #include <string>
@@ -12,9 +13,9 @@
 
 namespace dresskit {
 
-enum class Integrator { symplectic_euler, implicit_euler };
+enum class Integrator { symplectic_euler, implicit_euler, newton };
 enum class LinearSolver { conjugate_gradient, ldlt };
-/// "symplectic", "implicit"; throws InputError naming the value otherwise.
+/// "symplectic", "implicit", "newton"; throws InputError naming the value otherwise.
 Integrator parse_integrator(const std::string& text);
 std::string to_string(Integrator integrator);
 
@@ -40,6 +41,8 @@ struct SimulationOptions {
   /// of the cost (docs/results.md); 1e-4 keeps a margin.
   double cg_tolerance = 1e-4;
   int cg_max_iterations = 1000;
+  int newton_iterations = 10;       ///< Newton integrator: iterations per step at most
+  double newton_tolerance = 1e-6;   ///< Newton integrator: stop when no particle moves more [m]
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
   /// Adaptive time step: a failed step, or one whose largest strain changes by more than
   /// max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm steps
@@ -56,6 +59,7 @@ struct StepResult {
   bool ok = true;            ///< false: the step was undone and the state is the last good one
   std::string failure;       ///< why not ok ("non-finite state", "strain 3.2 beyond 1", ...)
   int solver_iterations = 0; ///< CG iterations (0 for direct and explicit)
+  int newton_iterations = 0; ///< Newton integrator: iterations taken
   int strain_limit_sweeps = 0;
   int springs_limited = 0;   ///< springs shortened by strain limiting in this step
   int collisions = 0;        ///< particles pushed out of colliders in this step
@@ -120,6 +124,12 @@ class ClothSimulator {
   void add_spring_forces(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& v, Eigen::MatrixX3d& f) const;
   void step_symplectic(StepResult& r);
   void step_implicit(StepResult& r);
+  void step_newton(StepResult& r);
+  void assemble_system(bool with_spring_damping, Eigen::VectorXd* Kv);
+  bool solve_system(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess, Eigen::VectorXd& sol,
+                    StepResult& r);
+  double incremental_potential(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x0,
+                               const Eigen::MatrixX3d& v0) const;
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
   void build_pattern();
