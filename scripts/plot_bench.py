@@ -3,6 +3,8 @@
 
 usage: scripts/plot_bench.py stability IN.csv OUT.png
        scripts/plot_bench.py error IN.csv OUT.png
+       scripts/plot_bench.py heat IN.csv OUT.png        (bench_heat_error's CSV)
+       scripts/plot_bench.py surface IN.csv OUT.png     (dress-a-mesh thickness --plot's temperature.csv)
 """
 import csv
 import sys
@@ -64,7 +66,42 @@ def error(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def heat(rows, out):
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    colours = {"explicit": "tab:red", "implicit": "tab:blue", "crank-nicolson": "tab:green"}
+    for scheme, colour in colours.items():
+        pts = [(float(r["seconds"]) * 1e3, float(r["max_temperature_error_k"]), float(r["thickness_relative_error"]))
+               for r in rows if r["scheme"] == scheme]
+        axes[0].loglog([p[0] for p in pts], [p[1] for p in pts], "o", ms=3, color=colour, label=scheme)
+        axes[1].loglog([p[0] for p in pts], [max(p[2], 1e-9) for p in pts], "o", ms=3, color=colour, label=scheme)
+    axes[0].set_ylabel("largest temperature error against erfc [K]")
+    axes[1].set_ylabel("thickness error / exact thickness")
+    for ax in axes:
+        ax.set_xlabel("wall time per solve [ms], one core")
+        ax.legend()
+    fig.suptitle("1D heat solver, gray-interlock 37 / -10 C, 3600 s: cells 25-800 x steps 10-3200")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
+def surface(rows, out):
+    depths = [float(k[len("T_at_"):-len("_mm")]) for k in rows[0] if k.startswith("T_at_")]
+    keys = [k for k in rows[0] if k.startswith("T_at_")]
+    times = [float(r["time_s"]) for r in rows]
+    grid = [[float(r[k]) for k in keys] for r in rows]
+    fig, ax = plt.subplots(figsize=(7, 5))
+    mesh = ax.pcolormesh(depths, times, grid, cmap="coolwarm", shading="auto")
+    ax.contour(depths, times, grid, levels=8, colors="k", linewidths=0.5)
+    ax.set_xlim(0, depths[-1] / 4)
+    ax.set_xlabel("depth from the skin [mm]")
+    ax.set_ylabel("time [s]")
+    fig.colorbar(mesh, label="temperature [C]")
+    ax.set_title("T(x, t) through the fabric")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 if __name__ == "__main__":
     kind, src, out = sys.argv[1:4]
     rows = list(csv.DictReader(open(src)))
-    {"stability": stability, "error": error}[kind](rows, out)
+    {"stability": stability, "error": error, "heat": heat, "surface": surface}[kind](rows, out)

@@ -15,6 +15,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
+#include "thickness_command.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -347,6 +348,9 @@ int main(int argc, char** argv) {
   simulate->add_option("-o,--output", simulate_dir, "output directory")->required();
   simulate->add_flag("--frames", simulate_frames, "also write frame_NNNNN.obj at the scene's fps");
 
+  cli::ThicknessCommand thickness;
+  thickness.add_to(app);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -364,11 +368,15 @@ int main(int argc, char** argv) {
     if (*info) return run_info(info_args, info_json);
     if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
     if (*simulate) return run_simulate(scene_path, simulate_dir, simulate_frames);
+    if (*thickness.command) return thickness.run();
     if (*demo) {
       body_options.pose = parse_pose(pose);
       garment_options.edge_length = body_options.edge_length;
       return run_demo(demo_dir, body_options, garment_options);
     }
+  } catch (const CLI::ValidationError& e) {
+    std::cerr << "dress-a-mesh: " << e.what() << " (see --help)\n";
+    return static_cast<int>(ExitCode::usage);
   } catch (const InputError& e) {
     std::cerr << "dress-a-mesh: " << e.what() << "\n";
     return static_cast<int>(ExitCode::bad_input);

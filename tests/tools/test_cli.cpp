@@ -213,3 +213,56 @@ TEST(Cli, SimulateBadSceneExits2NamingTheKey) {
   EXPECT_NE(r.err.find("silk"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 }
+
+TEST(Cli, ThicknessPrintsTheIssuesKeysAndTheTenFabrics) {
+  test::TempDir dir;
+  CliRun r = run(dir, "thickness --fabric gray-interlock --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  for (const char* key : {"thickness_mm", "thickness_min_mm", "thickness_max_mm", "threshold_c"})
+    ASSERT_TRUE(j.contains(key)) << key;
+  EXPECT_LE(j["thickness_min_mm"].get<double>(), j["thickness_mm"].get<double>());
+  EXPECT_LE(j["thickness_mm"].get<double>(), j["thickness_max_mm"].get<double>());
+  EXPECT_NEAR(j["thickness_mm"].get<double>(), j["thickness_closed_form_mm"].get<double>(),
+              0.005 * j["thickness_mm"].get<double>());
+
+  // The same blend given as a composition gives the same thickness.
+  r = run(dir, "thickness --composition cotton=0.6,polyester=0.4 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(r.out)["thickness_mm"].get<double>(), j["thickness_mm"].get<double>());
+
+  r = run(dir, "thickness --all-fabrics --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto table = nlohmann::json::parse(r.out);
+  ASSERT_EQ(table.size(), 10u);
+  EXPECT_EQ(table[0]["fabric"], "ivory-rib-knit");
+
+  r = run(dir, "thickness --composition down=1 --solidity 0.002 --panel-areas 0.1,0.2 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto down = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(down["down_fill"]["total_kg"].get<double>(),
+              0.3 * down["thickness_mm"].get<double>() * 1e-3 * 0.002 * 1310.0, 1e-9);
+}
+
+TEST(Cli, ThicknessPlotWritesCsvAndPng) {
+  test::TempDir dir;
+  const CliRun r = run(dir, "thickness --fabric white-swim-solid --plot " + dir.file("plot"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("plot/temperature.csv")));
+  EXPECT_EQ(slurp(dir.file("plot/temperature.png")).substr(1, 3), "PNG");
+}
+
+TEST(Cli, ThicknessBadInputExits2WithOneLine) {
+  test::TempDir dir;
+  for (const char* args : {"--composition cotton=0.6,polyester=0.3", "--composition cotton=1.2,wool=-0.2",
+                           "--composition silk=1", "--fabric velvet", "--fabric gray-interlock --t-skin 20 --t-env 20",
+                           "--fabric gray-interlock --time 0", "--fabric gray-interlock --cells 0",
+                           "--fabric gray-interlock --threshold 50", "--fabric gray-interlock --scheme leapfrog"}) {
+    const CliRun r = run(dir, std::string("thickness ") + args + " --plot " + dir.file("plot"));
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("plot"))) << args;
+  }
+  EXPECT_EQ(run(dir, "thickness").code, 64);
+  EXPECT_EQ(run(dir, "thickness --fabric gray-interlock --composition cotton=1").code, 64);
+}
