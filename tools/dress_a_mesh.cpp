@@ -219,8 +219,23 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     std::snprintf(name, sizeof name, "frame_%05d.obj", index);
     write_file_atomically((fs::path(dir) / name).string(), cloth_obj_text(sim.positions(), scene.faces, scene.model.springs));
   };
+  // Layers: the gap of every double layer and the order of the layers, at every frame.
+  const bool layered = scene.model.layer_offset.size() > 1;
+  LayerGap gap_range;
+  gap_range.min = std::numeric_limits<double>::infinity();
+  int worst_order = 0;
+  auto track_layers = [&] {
+    if (!layered) return;
+    const LayerGap g = layer_gap(scene.model, sim.positions());
+    if (g.springs) {
+      gap_range.min = std::min(gap_range.min, g.min);
+      gap_range.max = std::max(gap_range.max, g.max);
+    }
+    worst_order = std::max(worst_order, layer_order(scene.model, sim.positions(), scene.simulation.colliders).violations);
+  };
   const auto t0 = Clock::now();
   energy.push_back(sim.elastic_energy());
+  track_layers();
   if (frames) write_frame(0);
   while (sim.time() < scene.duration - 1e-6 * dt) {
     const StepResult r = sim.step();
@@ -238,6 +253,7 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     if (sim.time() >= (frame_count + 1) / scene.fps - 1e-6 * dt) {
       ++frame_count;
       energy.push_back(sim.elastic_energy());
+      track_layers();
       if (frames) write_frame(frame_count);
     }
   }
@@ -249,7 +265,20 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     Eigen::Vector3d n;
     for (int i = 0; i < sim.positions().rows(); ++i) closest = std::min(closest, c.distance(sim.positions().row(i).transpose(), &n));
   }
-  const json report = {
+  json garments = json::array();
+  for (const GarmentInfo& g : scene.garments) {
+    json entry = {{"fabric", g.fabric}, {"double_layer", g.double_layer}, {"first_vertex", g.first_vertex},
+                  {"vertices", g.vertices}};
+    if (g.double_layer) {
+      entry["thickness_mm"] = g.thickness.thickness * 1e3;
+      entry["thickness_min_mm"] = g.thickness.min * 1e3;
+      entry["thickness_max_mm"] = g.thickness.max * 1e3;
+    }
+    garments.push_back(entry);
+  }
+  const LayerGap gap = layer_gap(scene.model, sim.positions());
+  const LayerOrder order = layer_order(scene.model, sim.positions(), scene.simulation.colliders);
+  json report = {
       {"scene", scene_path},
       {"integrator", to_string(scene.simulation.integrator)},
       {"linear_solver", scene.simulation.linear_solver == LinearSolver::ldlt ? "ldlt" : "cg"},
@@ -257,7 +286,9 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
       {"vertices", sim.positions().rows()},
       {"springs", {{"structural", scene.model.springs.count(SpringType::structural)},
                    {"shear", scene.model.springs.count(SpringType::shear)},
-                   {"bending", scene.model.springs.count(SpringType::bending)}}},
+                   {"bending", scene.model.springs.count(SpringType::bending)},
+                   {"layer_structural", scene.model.springs.count(SpringType::layer_structural)},
+                   {"layer_shear", scene.model.springs.count(SpringType::layer_shear)}}},
       {"skipped", {{"zero_area_faces", scene.model.skipped_zero_area_faces},
                    {"zero_length_springs", scene.model.skipped_zero_length_springs}}},
       {"force_terms", {{"gravity", scene.simulation.gravity.norm() > 0},
@@ -266,6 +297,7 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
                        {"spring_damping", scene.simulation.spring_damping > 0},
                        {"dynamic_stiffness", scene.simulation.dynamic_stiffness},
                        {"strain_limiting", scene.simulation.strain_limiting},
+                       {"layer_limits", !scene.model.springs.limited.empty()},
                        {"colliders", scene.simulation.colliders.size()}}},
       {"dt", dt},
       {"adaptive", scene.simulation.adaptive},
@@ -284,6 +316,16 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
       {"closest_collider_distance_m", std::isfinite(closest) ? json(closest) : json(nullptr)},
       {"stopped_reason", stopped},
       {"nan_detected", nan}};
+  report["layers"] = scene.model.layer_offset.size();
+  report["garments"] = garments;
+  if (gap.springs) {
+    report["layer_gap_mm"] = {{"min", gap.min * 1e3}, {"mean", gap.mean * 1e3}, {"max", gap.max * 1e3},
+                              {"min_over_frames", gap_range.min * 1e3}, {"max_over_frames", gap_range.max * 1e3}};
+  }
+  if (layered) {
+    report["layer_order"] = {{"checked", order.checked}, {"violations", order.violations},
+                             {"max_violations_over_frames", std::max(worst_order, order.violations)}};
+  }
   write_file_atomically((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
   std::cout << "simulated " << steps << " steps (" << frame_count << " frames) in " << wall << " s; max strain "
             << sim.max_strain() << "; " << stopped << "\n";

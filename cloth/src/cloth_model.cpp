@@ -78,6 +78,7 @@ ClothModel build_cloth(const TriangleMesh& mesh, const Fabric& fabric, const Clo
   const int nv = mesh.num_vertices();
   model.rest_positions = mesh.V;
   model.mass = Eigen::VectorXd::Zero(nv);
+  model.layer = Eigen::VectorXi::Zero(nv);
 
   // Faces with area; their normals and the area each gives to the edges around it: half its quad's
   // area when it is half of a quad (so a square grid's edge gets h²), else its own area (the factor

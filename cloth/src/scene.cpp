@@ -9,6 +9,7 @@
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/thickness/thickness.h"
 
 namespace dresskit {
 namespace fs = std::filesystem;
@@ -96,47 +97,81 @@ ClothModel make_chain(const Reader& c, double scale, double total_mass) {
   return m;
 }
 
-}  // namespace
 
-ClothScene load_cloth_scene(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open scene file");
-  json j;
+struct Garment {
+  ClothModel model;
+  std::vector<int> pins;  ///< this garment's vertices (both layers of a double layer)
+  GarmentInfo info;
+};
+
+/// "thickness": "heat" | {"t_skin", "t_env", "time", "threshold", "solidity", "composition"} (by heat
+/// conduction through the fabric's fibres or the given ones, thickness/) | {"mm", "min_mm", "max_mm"}
+/// (given, in millimetres whatever the units).
+LayerThickness read_thickness(const Reader& cloth, const Fabric& fabric) {
+  if (cloth.at("thickness").is_string()) {
+    if (cloth.text("thickness", "") != "heat") cloth.fail("must be \"heat\" or an object", "thickness");
+  } else {
+    const Reader t = cloth.object("thickness");
+    if (t.has("mm")) {
+      t.allow({"mm", "min_mm", "max_mm"});
+      LayerThickness given;
+      given.thickness = t.number("mm", 0.0, 1e-6, 1e6) * 1e-3;
+      given.min = t.number("min_mm", given.thickness * 1e3, 1e-6, 1e6) * 1e-3;
+      given.max = t.number("max_mm", given.thickness * 1e3, 1e-6, 1e6) * 1e-3;
+      if (!(given.min <= given.thickness && given.thickness <= given.max)) {
+        t.fail("need min_mm ≤ mm ≤ max_mm");
+      }
+      return given;
+    }
+  }
+  ThicknessOptions o;
+  Composition composition = fabric.composition;
+  if (cloth.at("thickness").is_object()) {
+    const Reader t = cloth.object("thickness");
+    t.allow({"t_skin", "t_env", "time", "threshold", "solidity", "composition"});
+    o.t_skin = t.number("t_skin", o.t_skin, -273.15, 1e4);
+    o.t_env = t.number("t_env", o.t_env, -273.15, 1e4);
+    o.exposure = t.number("time", o.exposure, 1e-9, 1e9);
+    if (t.has("threshold")) o.threshold = t.number("threshold", 0.0, -273.15, 1e4);
+    o.solidity = t.number("solidity", o.solidity, 1e-9, 1.0);
+    if (t.has("composition")) {
+      const json& mix = t.at("composition");
+      if (!mix.is_object()) t.fail("must be an object of fibre mass fractions", "composition");
+      composition.clear();
+      for (const auto& [fibre, fraction] : mix.items()) {
+        if (!fraction.is_number()) t.fail("must be a number", "composition." + fibre);
+        composition.emplace_back(fibre, fraction.get<double>());
+      }
+    }
+  }
   try {
-    j = json::parse(in);
-  } catch (const json::exception& e) {
-    throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
+    const ThicknessResult r = compute_thickness(composition, o);
+    return {r.thickness, r.thickness_min, r.thickness_max};
+  } catch (const InputError& e) {
+    cloth.fail(e.what(), "thickness");
   }
-  const Reader root(path, j, "");
-  root.allow({"units", "cloth", "colliders", "simulation"});
-  const fs::path folder = fs::path(path).parent_path();
-  double scale = 1.0;
-  if (root.has("units")) {
-    scale = root.at("units").is_number() ? root.number("units", 1.0, 1e-12, 1e12)
-                                         : Units::parse(root.text("units", "m")).metres_per_unit;
-  }
+}
 
-  ClothScene scene;
-  if (!root.has("cloth")) root.fail("missing", "cloth");
-  const Reader cloth = root.object("cloth");
+Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) {
   cloth.allow({"grid", "mesh", "chain", "fabric", "fabric_file", "pins", "total_mass", "warp",
-               "bending_springs", "stiffness"});
+               "bending_springs", "stiffness", "thickness"});
+  Garment garment;
+  ClothModel& model = garment.model;
   // Fabric: built-in by name, or by name from a user file.
-  scene.fabric_name = cloth.text("fabric", "gray-interlock");
+  garment.info.fabric = cloth.text("fabric", "gray-interlock");
   Fabric fabric;
   if (cloth.has("fabric_file")) {
     const auto fabrics = load_fabrics((folder / cloth.text("fabric_file", "")).string());
-    auto it = std::find_if(fabrics.begin(), fabrics.end(), [&](const Fabric& f) { return f.name == scene.fabric_name; });
-    if (it == fabrics.end()) cloth.fail("'" + scene.fabric_name + "' is not in the fabric file", "fabric");
+    auto it = std::find_if(fabrics.begin(), fabrics.end(), [&](const Fabric& f) { return f.name == garment.info.fabric; });
+    if (it == fabrics.end()) cloth.fail("'" + garment.info.fabric + "' is not in the fabric file", "fabric");
     fabric = *it;
   } else {
-    fabric = fabric_by_name(scene.fabric_name);
+    fabric = fabric_by_name(garment.info.fabric);
   }
   ClothBuildOptions build;
   build.total_mass = cloth.number("total_mass", 0.0, 0.0, 1e6);
   build.warp_direction = cloth.vector<3>("warp", Eigen::Vector3d::UnitX());
   build.bending_springs = cloth.boolean("bending_springs", true);
-
   const int shapes = cloth.has("grid") + cloth.has("mesh") + cloth.has("chain");
   if (shapes != 1) cloth.fail("exactly one of grid, mesh or chain is needed");
   int nx = 0;
@@ -152,23 +187,23 @@ ClothScene load_cloth_scene(const std::string& path) {
     nx = static_cast<int>(res.x());
     const TriangleMesh mesh = make_grid(size, res.cast<int>(), g.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
                                         g.vector<3>("normal", Eigen::Vector3d::UnitY()));
-    scene.model = build_cloth(mesh, fabric, build);
+    model = build_cloth(mesh, fabric, build);
   } else if (cloth.has("mesh")) {
     LoadOptions load;
     load.units.metres_per_unit = scale;
     const TriangleMesh mesh = load_mesh((folder / cloth.text("mesh", "")).string(), load);
-    scene.model = build_cloth(mesh, fabric, build);
+    model = build_cloth(mesh, fabric, build);
   } else {
     if (!(build.total_mass > 0)) cloth.fail("a chain needs a positive total_mass", "total_mass");
-    scene.model = make_chain(cloth.object("chain"), scale, build.total_mass);
+    model = make_chain(cloth.object("chain"), scale, build.total_mass);
     // Chain springs: linear at the fabric's warp stiffness per unit width × spacing / L0 (a strip
     // one spacing wide), or an explicit "stiffness" [N/m].
-    const int n = static_cast<int>(scene.model.rest_positions.rows());
-    const double L0 = (scene.model.rest_positions.row(1) - scene.model.rest_positions.row(0)).norm();
+    const int n = static_cast<int>(model.rest_positions.rows());
+    const double L0 = (model.rest_positions.row(1) - model.rest_positions.row(0)).norm();
     const double k_rest = cloth.number("stiffness", fabric.stiffness_at_rest(0.0), 1e-9, 1e12);
     const double k_knee = cloth.has("stiffness") ? k_rest : fabric.stiffness_at_knee(0.0);
     for (int k = 0; k + 1 < n; ++k) {
-      SpringSet& s = scene.model.springs;
+      SpringSet& s = model.springs;
       s.i.push_back(k);
       s.j.push_back(k + 1);
       s.rest_length.push_back(L0);
@@ -178,9 +213,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     }
   }
   if (cloth.has("stiffness") && !cloth.has("chain")) cloth.fail("only a chain takes an explicit stiffness", "stiffness");
-  scene.faces = scene.model.faces;
-
-  const int nv = static_cast<int>(scene.model.rest_positions.rows());
+  const int nv = static_cast<int>(model.rest_positions.rows());
   if (cloth.has("pins")) {
     const json& pins = cloth.at("pins");
     if (!pins.is_array()) cloth.fail("must be an array", "pins");
@@ -200,9 +233,69 @@ ClothScene load_cloth_scene(const std::string& path) {
       if (index < 0 || index >= nv) {
         cloth.fail("vertex " + std::to_string(index) + " is out of range (" + std::to_string(nv) + " vertices)", "pins");
       }
-      scene.pins.push_back(index);
+      garment.pins.push_back(index);
     }
   }
+  if (cloth.has("thickness")) {
+    if (model.faces.rows() == 0) cloth.fail("a chain cannot have a thickness", "thickness");
+    garment.info.double_layer = true;
+    garment.info.thickness = read_thickness(cloth, fabric);
+    model = make_double_layer(model, garment.info.thickness);
+    const std::size_t n = garment.pins.size();
+    for (std::size_t k = 0; k < n; ++k) garment.pins.push_back(garment.pins[k] + nv);
+  }
+  return garment;
+}
+
+}  // namespace
+
+ClothScene load_cloth_scene(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open scene file");
+  json j;
+  try {
+    j = json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path + ": not valid JSON (" + std::string(e.what()) + ")");
+  }
+  const Reader root(path, j, "");
+  root.allow({"units", "cloth", "cloths", "colliders", "simulation"});
+  const fs::path folder = fs::path(path).parent_path();
+  double scale = 1.0;
+  if (root.has("units")) {
+    scale = root.at("units").is_number() ? root.number("units", 1.0, 1e-12, 1e12)
+                                         : Units::parse(root.text("units", "m")).metres_per_unit;
+  }
+
+  ClothScene scene;
+  if (root.has("cloth") == root.has("cloths")) root.fail("exactly one of cloth or cloths is needed");
+  std::vector<Garment> garments;
+  if (root.has("cloth")) {
+    garments.push_back(read_garment(root.object("cloth"), folder, scale));
+  } else {
+    const json& list = root.at("cloths");
+    if (!list.is_array() || list.empty()) root.fail("must be a non-empty array", "cloths");
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      const Reader cloth(path, list[k], "cloths[" + std::to_string(k) + "]");
+      garments.push_back(read_garment(cloth, folder, scale));
+      if (garments.back().model.faces.rows() == 0) cloth.fail("a chain cannot be one of several layers");
+    }
+  }
+  double separation = 0.002 * scale;
+  if (root.has("simulation")) separation = root.object("simulation").number("layer_separation", 0.002, 0.0, 1e3) * scale;
+  std::vector<ClothModel> models;
+  for (const Garment& g : garments) models.push_back(g.model);
+  const std::vector<int> first = garment_offsets(models);
+  scene.model = garments.size() == 1 ? std::move(models[0]) : stack_layers(models, separation);
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    for (int p : garments[k].pins) scene.pins.push_back(p + first[k]);
+    GarmentInfo info = garments[k].info;
+    info.first_vertex = first[k];
+    info.vertices = first[k + 1] - first[k];
+    scene.garments.push_back(info);
+  }
+  scene.fabric_name = scene.garments[0].fabric;
+  scene.faces = scene.model.faces;
 
   if (root.has("colliders")) {
     if (!root.at("colliders").is_array()) root.fail("must be an array", "colliders");
@@ -233,7 +326,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     s.allow({"integrator", "linear_solver", "dt", "duration", "fps", "gravity", "strain_limit",
              "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
-             "max_strain_change", "newton_iterations", "newton_tolerance"});
+             "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -261,6 +354,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.newton_tolerance = s.number("newton_tolerance", o.newton_tolerance, 1e-15, 1.0);
     o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
+    o.layer_order_guard = s.boolean("layer_order_guard", o.layer_order_guard);
   }
   check_options(scene.simulation);
   return scene;

@@ -12,7 +12,14 @@
 
 namespace dresskit {
 
-enum class SpringType : std::uint8_t { structural = 0, shear = 1, bending = 2 };
+/// layer_structural / layer_shear join the two layers of a double-layer garment (cloth/layers.h).
+enum class SpringType : std::uint8_t {
+  structural = 0,
+  shear = 1,
+  bending = 2,
+  layer_structural = 3,
+  layer_shear = 4
+};
 
 /// #S springs, one entry per spring in every array.
 struct SpringSet {
@@ -20,6 +27,11 @@ struct SpringSet {
   std::vector<double> rest_length;      ///< [m]
   std::vector<double> k_rest, k_knee;   ///< stiffness at rest and at the knee strain [N/m]
   std::vector<SpringType> type;
+  /// Springs whose length is held inside [min, max] by the strain-limiting correction whether or
+  /// not strain limiting is switched on (the inter-layer springs of a double layer): spring index,
+  /// shortest and longest length [m]. A sparse list: most springs have none.
+  std::vector<int> limited;
+  std::vector<double> limit_min, limit_max;
   int size() const { return static_cast<int>(i.size()); }
   StiffnessLaw law(int s) const { return StiffnessLaw::fitted(k_rest[s], k_knee[s], kKneeStrain); }
   int count(SpringType t) const;
@@ -38,6 +50,11 @@ struct ClothModel {
   Eigen::VectorXd mass;             ///< #V [kg]
   Eigen::MatrixX3i faces;           ///< #F×3, the faces kept (zero-area ones are skipped)
   SpringSet springs;
+  /// #V, the layer of each particle from the body outwards (0 for a single-layer cloth).
+  Eigen::VectorXi layer;
+  /// Per layer: the distance kept from colliders beyond the collision margin [m] — the thickness of
+  /// the layers beneath, so that a layer rests on the ones below it (cloth/layers.h).
+  std::vector<double> layer_offset{0.0};
   int skipped_zero_area_faces = 0;     ///< faces of zero area: no mass, no springs
   int skipped_zero_length_springs = 0; ///< coincident ends: never divided by
 };

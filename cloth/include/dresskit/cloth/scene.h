@@ -5,9 +5,19 @@
 #include <vector>
 
 #include "dresskit/cloth/cloth_model.h"
+#include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/simulator.h"
 
 namespace dresskit {
+
+/// One garment of a scene: its fabric, whether it is a double layer and with which thickness, and
+/// where its particles are in the scene's model.
+struct GarmentInfo {
+  std::string fabric;
+  bool double_layer = false;
+  LayerThickness thickness;  ///< double layers only [m]
+  int first_vertex = 0, vertices = 0;
+};
 
 struct ClothScene {
   ClothModel model;
@@ -15,7 +25,8 @@ struct ClothScene {
   SimulationOptions simulation;
   double duration = 2.0;           ///< [s] simulated
   double fps = 24.0;               ///< frames per simulated second
-  std::string fabric_name;
+  std::string fabric_name;         ///< the first garment's
+  std::vector<GarmentInfo> garments;  ///< from the body outwards
   Eigen::MatrixX3i faces;          ///< for output; empty for a chain (written as a polyline)
 };
 

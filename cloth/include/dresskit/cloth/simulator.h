@@ -30,6 +30,10 @@ struct SimulationOptions {
   double gust_frequency = 0.0;  ///< f [Hz]
   std::vector<Collider> colliders;
   double collision_margin = 0.002;  ///< particles are kept this far outside colliders [m]
+  /// Several layers on analytic colliders: after collisions, a particle that lies less than half
+  /// the layers' offset difference above the particle beneath it (cloth/layers.h, match_layers) is
+  /// moved out along its nearest collider's normal, inner layers first, and loses its inward speed.
+  bool layer_order_guard = true;
   double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
   bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
   bool strain_limiting = false;    ///< position correction after each step
@@ -63,6 +67,7 @@ struct StepResult {
   int strain_limit_sweeps = 0;
   int springs_limited = 0;   ///< springs shortened by strain limiting in this step
   int collisions = 0;        ///< particles pushed out of colliders in this step
+  int layer_pushes = 0;      ///< particles moved out by the layer-order guard in this step
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
 };
@@ -132,6 +137,7 @@ class ClothSimulator {
                                const Eigen::MatrixX3d& v0) const;
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
+  void keep_layer_order(StepResult& r);
   void build_pattern();
   StepResult try_step(double dt);
   Eigen::Vector3d wind_at(double t) const;

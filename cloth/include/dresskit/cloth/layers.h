@@ -1,0 +1,69 @@
+#pragma once
+// Multi-layer garments (docs/cloth.md, "Layers"): a garment with thickness is a double layer — its
+// surface and a copy offset along the normals by the thickness, joined vertex to vertex by
+// structural springs and across each edge by shear springs with the layer's own coefficients (no
+// bending springs between layers), rest length = thickness, length held inside [min, max]. Several
+// garments are stacked as ordered layers from the body outwards.
+#include <vector>
+
+#include "dresskit/cloth/cloth_model.h"
+#include "dresskit/cloth/collider.h"
+
+namespace dresskit {
+
+struct LayerThickness {
+  double thickness = 0.0;  ///< rest distance between the layers [m], > 0
+  double min = 0.0;        ///< shortest allowed [m], 0 < min ≤ thickness
+  double max = 0.0;        ///< longest allowed [m], ≥ thickness
+};
+
+/// Area-weighted vertex normals of the model's faces at its rest positions (#V×3, unit; zero rows
+/// for vertices without faces).
+Eigen::MatrixX3d rest_vertex_normals(const ClothModel& model);
+
+/// The double layer of a single-layer model: particles 0..V−1 are the inner layer (as given),
+/// V..2V−1 the outer one at x + thickness · n. Each layer keeps the whole model's springs and mass
+/// (two shells of the fabric). Between them: per vertex one layer_structural spring (stiffness =
+/// the mean of that vertex's structural springs), per structural edge two layer_shear springs
+/// (the edge's own constant); the structural ones are listed as limited to [min, max]. Faces:
+/// inner reversed, outer, and the rim quads joining boundary edges, so the output is closed.
+/// Throws InputError for a bad thickness interval or a model that already has several layers.
+ClothModel make_double_layer(const ClothModel& single, const LayerThickness& thickness);
+
+/// Stacks models (first = innermost) into one: particles, springs, faces and layers concatenated in
+/// order; layer_offset accumulates each layer's thickness (double layers) plus `separation` [m]
+/// between garments.
+ClothModel stack_layers(const std::vector<ClothModel>& garments, double separation);
+
+/// First particle of each stacked garment (and the total at the end), to map per-garment indices.
+std::vector<int> garment_offsets(const std::vector<ClothModel>& garments);
+
+struct LayerGap {
+  int springs = 0;  ///< layer_structural springs measured
+  double min = 0.0, mean = 0.0, max = 0.0;  ///< their lengths [m]
+};
+/// Distances between the two layers of every double layer at positions x.
+LayerGap layer_gap(const ClothModel& model, const Eigen::MatrixX3d& x);
+
+/// For each particle of a layer ≥ 1, the particle of the layer beneath it: the one whose projection
+/// onto p's nearest collider is closest to p's, within twice that layer's mean structural rest
+/// length (−1: none, or layer 0). Also each particle's nearest collider, distance and normal.
+struct LayerContacts {
+  std::vector<int> below;
+  std::vector<int> collider;    ///< −1 without colliders
+  Eigen::VectorXd distance;     ///< signed, to that collider [m]
+  Eigen::MatrixX3d normal;      ///< its outward normal at the particle
+};
+LayerContacts match_layers(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
+
+struct LayerOrder {
+  int checked = 0;     ///< particles of layers ≥ 1 that had a particle of the layer below beneath them
+  int violations = 0;  ///< of those, the ones lying below the layer beneath
+};
+/// Layer order on analytic colliders: each particle p of layer ℓ ≥ 1 is compared with the particle q
+/// beneath it (match_layers); p violates the order when its distance from its nearest collider is
+/// smaller than q's by more than a quarter of the two layers' offset difference. Without colliders
+/// nothing is checked.
+LayerOrder layer_order(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
+
+}  // namespace dresskit

@@ -1,0 +1,269 @@
+#include "dresskit/cloth/layers.h"
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <unordered_map>
+
+#include "dresskit/mesh/errors.h"
+
+namespace dresskit {
+namespace {
+
+void append_spring(SpringSet& s, int i, int j, double rest, double k_rest, double k_knee, SpringType type) {
+  s.i.push_back(i);
+  s.j.push_back(j);
+  s.rest_length.push_back(rest);
+  s.k_rest.push_back(k_rest);
+  s.k_knee.push_back(k_knee);
+  s.type.push_back(type);
+}
+
+void append_springs(SpringSet& to, const SpringSet& from, int offset) {
+  const int base = to.size();
+  for (int k = 0; k < from.size(); ++k)
+    append_spring(to, from.i[k] + offset, from.j[k] + offset, from.rest_length[k], from.k_rest[k],
+                  from.k_knee[k], from.type[k]);
+  for (std::size_t k = 0; k < from.limited.size(); ++k) {
+    to.limited.push_back(from.limited[k] + base);
+    to.limit_min.push_back(from.limit_min[k]);
+    to.limit_max.push_back(from.limit_max[k]);
+  }
+}
+
+int layer_count(const ClothModel& m) { return m.layer.size() ? m.layer.maxCoeff() + 1 : 1; }
+
+}  // namespace
+
+Eigen::MatrixX3d rest_vertex_normals(const ClothModel& m) {
+  Eigen::MatrixX3d n = Eigen::MatrixX3d::Zero(m.rest_positions.rows(), 3);
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+    const Eigen::Vector3d a = m.rest_positions.row(m.faces(f, 0)), b = m.rest_positions.row(m.faces(f, 1)),
+                          c = m.rest_positions.row(m.faces(f, 2));
+    const Eigen::Vector3d area_normal = (b - a).cross(c - a);  // twice the area, along the normal
+    for (int k = 0; k < 3; ++k) n.row(m.faces(f, k)) += area_normal.transpose();
+  }
+  for (Eigen::Index v = 0; v < n.rows(); ++v) {
+    const double len = n.row(v).norm();
+    if (len > 0.0) n.row(v) /= len;
+  }
+  return n;
+}
+
+ClothModel make_double_layer(const ClothModel& single, const LayerThickness& t) {
+  if (!(t.thickness > 0.0 && t.min > 0.0 && t.min <= t.thickness && t.max >= t.thickness) ||
+      !std::isfinite(t.max)) {
+    throw InputError("layer thickness " + std::to_string(t.thickness) + " m with limits [" +
+                     std::to_string(t.min) + ", " + std::to_string(t.max) +
+                     "] m: need 0 < min ≤ thickness ≤ max");
+  }
+  if (layer_count(single) != 1) throw InputError("a double layer is made from a single-layer cloth");
+  if (single.faces.rows() == 0) throw InputError("a double layer needs a cloth with faces");
+  const int nv = static_cast<int>(single.rest_positions.rows());
+  const Eigen::MatrixX3d normals = rest_vertex_normals(single);
+
+  ClothModel d;
+  d.rest_positions.resize(2 * nv, 3);
+  d.rest_positions.topRows(nv) = single.rest_positions;
+  d.rest_positions.bottomRows(nv) = single.rest_positions + t.thickness * normals;
+  d.mass.resize(2 * nv);
+  d.mass << single.mass, single.mass;
+  d.layer.resize(2 * nv);
+  d.layer << Eigen::VectorXi::Zero(nv), Eigen::VectorXi::Ones(nv);
+  d.layer_offset = {0.0, t.thickness};
+  d.skipped_zero_area_faces = single.skipped_zero_area_faces;
+  d.skipped_zero_length_springs = single.skipped_zero_length_springs;
+  append_springs(d.springs, single.springs, 0);
+  append_springs(d.springs, single.springs, nv);
+
+  // The layer's own coefficients at each vertex: the mean spring constant [N/m] of its structural
+  // springs (k_rest and k_knee are already per spring, k = c A / L0²).
+  Eigen::VectorXd k_rest = Eigen::VectorXd::Zero(nv), k_knee = Eigen::VectorXd::Zero(nv);
+  Eigen::VectorXi count = Eigen::VectorXi::Zero(nv);
+  const SpringSet& s = single.springs;
+  for (int k = 0; k < s.size(); ++k) {
+    if (s.type[k] != SpringType::structural) continue;
+    for (int v : {s.i[k], s.j[k]}) {
+      k_rest[v] += s.k_rest[k];
+      k_knee[v] += s.k_knee[k];
+      ++count[v];
+    }
+  }
+  auto limit_last = [&](double lo, double hi) {
+    d.springs.limited.push_back(d.springs.size() - 1);
+    d.springs.limit_min.push_back(lo);
+    d.springs.limit_max.push_back(hi);
+  };
+  for (int v = 0; v < nv; ++v) {
+    if (count[v] == 0 || normals.row(v).squaredNorm() == 0.0) continue;  // no faces, no springs
+    append_spring(d.springs, v, v + nv, t.thickness, k_rest[v] / count[v], k_knee[v] / count[v],
+                  SpringType::layer_structural);
+    limit_last(t.min, t.max);
+  }
+  // Shear across each structural edge (i, j): i to j's copy and j to i's copy, with the edge's own
+  // constant. Not length-limited: the structural pair above holds the gap.
+  for (int k = 0; k < s.size(); ++k) {
+    if (s.type[k] != SpringType::structural) continue;
+    const int i = s.i[k], j = s.j[k];
+    for (auto [a, b] : {std::pair{i, j + nv}, std::pair{j, i + nv}}) {
+      const double rest = (d.rest_positions.row(b) - d.rest_positions.row(a)).norm();
+      append_spring(d.springs, a, b, rest, s.k_rest[k], s.k_knee[k], SpringType::layer_shear);
+    }
+  }
+
+  // Faces: the inner layer reversed (it faces the body), the outer one, and the rim.
+  std::map<std::pair<int, int>, int> directed;  // directed edge → count, to find boundary edges
+  for (Eigen::Index f = 0; f < single.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++directed[{single.faces(f, c), single.faces(f, (c + 1) % 3)}];
+  std::vector<Eigen::Vector3i> faces;
+  for (Eigen::Index f = 0; f < single.faces.rows(); ++f) {
+    const Eigen::Vector3i tri = single.faces.row(f);
+    faces.emplace_back(tri[0], tri[2], tri[1]);
+    faces.emplace_back(tri[0] + nv, tri[1] + nv, tri[2] + nv);
+  }
+  for (const auto& [edge, n] : directed) {
+    const auto [a, b] = edge;
+    if (directed.count({b, a})) continue;  // interior edge
+    faces.emplace_back(a, b, b + nv);
+    faces.emplace_back(a, b + nv, a + nv);
+  }
+  d.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
+  for (std::size_t f = 0; f < faces.size(); ++f) d.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  return d;
+}
+
+std::vector<int> garment_offsets(const std::vector<ClothModel>& garments) {
+  std::vector<int> offsets{0};
+  for (const ClothModel& g : garments) offsets.push_back(offsets.back() + static_cast<int>(g.rest_positions.rows()));
+  return offsets;
+}
+
+ClothModel stack_layers(const std::vector<ClothModel>& garments, double separation) {
+  const std::vector<int> offsets = garment_offsets(garments);
+  const int nv = offsets.back();
+  ClothModel m;
+  m.rest_positions.resize(nv, 3);
+  m.mass.resize(nv);
+  m.layer.resize(nv);
+  m.layer_offset.clear();
+  Eigen::Index nf = 0;
+  for (const ClothModel& g : garments) nf += g.faces.rows();
+  m.faces.resize(nf, 3);
+  nf = 0;
+  double base = 0.0;  // offset of this garment's innermost layer
+  int first_layer = 0;
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    const ClothModel& g = garments[k];
+    const int n = static_cast<int>(g.rest_positions.rows());
+    m.rest_positions.middleRows(offsets[k], n) = g.rest_positions;
+    m.mass.segment(offsets[k], n) = g.mass;
+    m.layer.segment(offsets[k], n) = g.layer.array() + first_layer;
+    m.faces.middleRows(nf, g.faces.rows()) = g.faces.array() + offsets[k];
+    nf += g.faces.rows();
+    append_springs(m.springs, g.springs, offsets[k]);
+    m.skipped_zero_area_faces += g.skipped_zero_area_faces;
+    m.skipped_zero_length_springs += g.skipped_zero_length_springs;
+    if (k > 0) base = m.layer_offset.back() + separation;
+    for (double offset : g.layer_offset) m.layer_offset.push_back(base + offset);
+    first_layer += layer_count(g);
+  }
+  return m;
+}
+
+LayerGap layer_gap(const ClothModel& m, const Eigen::MatrixX3d& x) {
+  LayerGap gap;
+  gap.min = std::numeric_limits<double>::infinity();
+  double sum = 0.0;
+  const SpringSet& s = m.springs;
+  for (int k = 0; k < s.size(); ++k) {
+    if (s.type[k] != SpringType::layer_structural) continue;
+    const double L = (x.row(s.j[k]) - x.row(s.i[k])).norm();
+    gap.min = std::min(gap.min, L);
+    gap.max = std::max(gap.max, L);
+    sum += L;
+    ++gap.springs;
+  }
+  if (gap.springs == 0) gap.min = 0.0;
+  gap.mean = gap.springs ? sum / gap.springs : 0.0;
+  return gap;
+}
+
+LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
+  const int nv = static_cast<int>(x.rows());
+  LayerContacts c;
+  c.below.assign(nv, -1);
+  c.collider.assign(nv, -1);
+  c.distance = Eigen::VectorXd::Constant(nv, std::numeric_limits<double>::infinity());
+  c.normal = Eigen::MatrixX3d::Zero(nv, 3);
+  const int layers = layer_count(m);
+  if (colliders.empty() || layers < 2) return c;
+  // Nearest collider of every particle: its index, the distance, the normal and the projection.
+  Eigen::MatrixX3d projected(nv, 3);
+  for (int p = 0; p < nv; ++p) {
+    for (std::size_t k = 0; k < colliders.size(); ++k) {
+      Eigen::Vector3d n;
+      const double d = colliders[k].distance(x.row(p), &n);
+      if (d < c.distance[p]) {
+        c.distance[p] = d;
+        c.collider[p] = static_cast<int>(k);
+        c.normal.row(p) = n.transpose();
+        projected.row(p) = x.row(p) - d * n.transpose();
+      }
+    }
+  }
+  // Per layer: the mean structural rest length sets the search radius.
+  std::vector<double> rest_sum(layers, 0.0);
+  std::vector<int> rest_count(layers, 0);
+  for (int k = 0; k < m.springs.size(); ++k) {
+    if (m.springs.type[k] != SpringType::structural) continue;
+    rest_sum[m.layer[m.springs.i[k]]] += m.springs.rest_length[k];
+    ++rest_count[m.layer[m.springs.i[k]]];
+  }
+  for (int below = 0; below + 1 < layers; ++below) {
+    if (rest_count[below] == 0) continue;
+    const double h = 2.0 * rest_sum[below] / rest_count[below];
+    auto cell = [h](const Eigen::Vector3d& p) {
+      const Eigen::Vector3i q = (p / h).array().floor().cast<int>();
+      return (static_cast<std::int64_t>(q.x() & 0x1fffff) << 42) |
+             (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) | static_cast<std::int64_t>(q.z() & 0x1fffff);
+    };
+    std::unordered_map<std::int64_t, std::vector<int>> grid;
+    for (int q = 0; q < nv; ++q)
+      if (m.layer[q] == below) grid[cell(projected.row(q))].push_back(q);
+    for (int p = 0; p < nv; ++p) {
+      if (m.layer[p] != below + 1) continue;
+      const Eigen::Vector3d cp = projected.row(p);
+      double best_d2 = h * h;
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            const auto it = grid.find(cell(cp + h * Eigen::Vector3d(dx, dy, dz)));
+            if (it == grid.end()) continue;
+            for (int q : it->second) {
+              const double d2 = (projected.row(q).transpose() - cp).squaredNorm();
+              if (d2 < best_d2) {
+                best_d2 = d2;
+                c.below[p] = q;
+              }
+            }
+          }
+    }
+  }
+  return c;
+}
+
+LayerOrder layer_order(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
+  const LayerContacts c = match_layers(m, x, colliders);
+  LayerOrder order;
+  for (int p = 0; p < x.rows(); ++p) {
+    const int q = c.below[p];
+    if (q < 0) continue;
+    ++order.checked;
+    const double tolerance = 0.25 * (m.layer_offset[m.layer[p]] - m.layer_offset[m.layer[q]]);
+    Eigen::Vector3d unused;
+    if (c.distance[p] < colliders[c.collider[p]].distance(x.row(q), &unused) - tolerance) ++order.violations;
+  }
+  return order;
+}
+
+}  // namespace dresskit

@@ -1,0 +1,207 @@
+// Double layers and stacked garments (cloth/layers.h): construction, the gap held inside the
+// thickness limits at every step, and the layer order on analytic colliders.
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+#include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/scene.h"
+#include "dresskit/cloth/simulator.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/thickness/thickness.h"
+#include "test_data.h"
+
+using namespace dresskit;
+
+namespace {
+ClothModel grid_cloth(int n, double height, const char* fabric = "gray-interlock") {
+  return build_cloth(make_grid({1.0, 1.0}, {n, n}, {0, height, 0}, {0, 1, 0}), fabric_by_name(fabric));
+}
+
+SimulationOptions sphere_options() {
+  SimulationOptions o;
+  o.dt = 1.0 / 240.0;
+  o.air_damping = 0.1;
+  o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
+  return o;
+}
+}  // namespace
+
+TEST(Layers, DoubleLayerHasTheCopyTheSpringsAndAClosedSurface) {
+  const ClothModel single = grid_cloth(5, 0.5);
+  const LayerThickness t{0.01, 0.008, 0.015};
+  const ClothModel d = make_double_layer(single, t);
+  const int nv = 25;
+  ASSERT_EQ(d.rest_positions.rows(), 2 * nv);
+  EXPECT_EQ(d.layer.sum(), nv);
+  EXPECT_EQ(d.layer_offset, (std::vector<double>{0.0, 0.01}));
+  // The outer layer is the inner one moved by the thickness along the (here +Y) normal.
+  EXPECT_TRUE(d.rest_positions.bottomRows(nv).isApprox(
+      single.rest_positions.rowwise() + Eigen::RowVector3d(0, 0.01, 0), 1e-12));
+  EXPECT_DOUBLE_EQ(d.mass.sum(), 2.0 * single.mass.sum());
+  EXPECT_EQ(d.springs.count(SpringType::structural), 2 * single.springs.count(SpringType::structural));
+  EXPECT_EQ(d.springs.count(SpringType::bending), 2 * single.springs.count(SpringType::bending));
+  EXPECT_EQ(d.springs.count(SpringType::layer_structural), nv);
+  EXPECT_EQ(d.springs.count(SpringType::layer_shear), 2 * single.springs.count(SpringType::structural));
+  ASSERT_EQ(d.springs.limited.size(), static_cast<std::size_t>(nv));
+  for (std::size_t k = 0; k < d.springs.limited.size(); ++k) {
+    const int s = d.springs.limited[k];
+    EXPECT_EQ(d.springs.type[s], SpringType::layer_structural);
+    EXPECT_DOUBLE_EQ(d.springs.rest_length[s], 0.01);
+    EXPECT_DOUBLE_EQ(d.springs.limit_min[k], 0.008);
+    EXPECT_DOUBLE_EQ(d.springs.limit_max[k], 0.015);
+  }
+  // Inter-layer structural stiffness = the mean of the vertex's own structural springs: a corner of
+  // a square grid has two equal edges, so it equals theirs averaged.
+  double corner = 0.0;
+  int edges = 0;
+  for (int s = 0; s < single.springs.size(); ++s)
+    if (single.springs.type[s] == SpringType::structural && (single.springs.i[s] == 0 || single.springs.j[s] == 0)) {
+      corner += single.springs.k_rest[s];
+      ++edges;
+    }
+  for (int s = 0; s < d.springs.size(); ++s) {
+    if (d.springs.type[s] == SpringType::layer_structural && d.springs.i[s] == 0) {
+      EXPECT_NEAR(d.springs.k_rest[s], corner / edges, 1e-9);
+    }
+  }
+  // Inner faces, outer faces and 2 triangles per boundary edge (16 on a 5×5 grid): closed.
+  EXPECT_EQ(d.faces.rows(), 2 * single.faces.rows() + 2 * 16);
+  std::map<std::pair<int, int>, int> directed;
+  for (Eigen::Index f = 0; f < d.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) ++directed[{d.faces(f, c), d.faces(f, (c + 1) % 3)}];
+  for (const auto& [e, n] : directed) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(directed.count({e.second, e.first}), 1u) << e.first << "-" << e.second;
+  }
+
+  EXPECT_THROW(make_double_layer(single, {0.01, 0.012, 0.015}), InputError);  // min > thickness
+  EXPECT_THROW(make_double_layer(single, {0.0, 0.0, 0.0}), InputError);
+  EXPECT_THROW(make_double_layer(d, t), InputError);  // already two layers
+}
+
+TEST(Layers, StackingOffsetsIndicesLayersAndOffsets) {
+  const ClothModel a = grid_cloth(4, 0.5), b = make_double_layer(grid_cloth(3, 0.6), {0.02, 0.01, 0.03});
+  const ClothModel m = stack_layers({a, b}, 0.003);
+  EXPECT_EQ(m.rest_positions.rows(), 16 + 18);
+  EXPECT_EQ(garment_offsets({a, b}), (std::vector<int>{0, 16, 34}));
+  EXPECT_EQ(m.layer.maxCoeff(), 2);
+  EXPECT_EQ(m.layer[16], 1);
+  EXPECT_EQ(m.layer[33], 2);
+  ASSERT_EQ(m.layer_offset.size(), 3u);
+  EXPECT_DOUBLE_EQ(m.layer_offset[1], 0.003);
+  EXPECT_DOUBLE_EQ(m.layer_offset[2], 0.023);
+  EXPECT_EQ(m.springs.size(), a.springs.size() + b.springs.size());
+  EXPECT_EQ(m.springs.limited.front(), a.springs.size() + b.springs.limited.front());
+  EXPECT_EQ(m.faces.minCoeff(), 0);
+  EXPECT_EQ(m.faces.maxCoeff(), 33);
+}
+
+TEST(Layers, GapStaysInsideTheLimitsAtEveryStepOnASphere) {
+  const LayerThickness t{0.017, 0.0159, 0.0225};  // camel-ponte-roma's thermal thickness and limits
+  ClothSimulator sim(make_double_layer(grid_cloth(16, 0.45, "camel-ponte-roma"), t), sphere_options());
+  double lowest = 1.0, highest = 0.0;
+  for (int step = 0; step < 480; ++step) {
+    ASSERT_TRUE(sim.step().ok) << step;
+    const LayerGap g = layer_gap(sim.model(), sim.positions());
+    lowest = std::min(lowest, g.min);
+    highest = std::max(highest, g.max);
+    ASSERT_GE(g.min, t.min * (1 - 1e-3)) << "step " << step;
+    ASSERT_LE(g.max, t.max * (1 + 1e-3)) << "step " << step;
+    if (step % 24 == 0) {
+      EXPECT_EQ(layer_order(sim.model(), sim.positions(), sim.options().colliders).violations, 0);
+    }
+  }
+  EXPECT_LT(lowest, t.thickness);  // the limits were reached, not idle
+  // No particle of either layer inside the sphere; the outer one keeps the thickness above it.
+  Eigen::Vector3d n;
+  for (int p = 0; p < sim.positions().rows(); ++p)
+    EXPECT_GE(sim.options().colliders[0].distance(sim.positions().row(p), &n), sim.options().collision_margin - 1e-9);
+}
+
+TEST(Layers, StackedGarmentsKeepTheirOrderOnASphere) {
+  // Three single layers dropped together: the layer-order guard keeps them stacked.
+  std::vector<ClothModel> garments = {grid_cloth(16, 0.40), grid_cloth(16, 0.42), grid_cloth(16, 0.44)};
+  SimulationOptions o = sphere_options();
+  ClothSimulator sim(stack_layers(garments, 0.004), o);
+  int worst = 0, checked = 0;
+  for (int step = 0; step < 480; ++step) {
+    ASSERT_TRUE(sim.step().ok) << step;
+    if (step % 24 == 23) {
+      const LayerOrder order = layer_order(sim.model(), sim.positions(), o.colliders);
+      worst = std::max(worst, order.violations);
+      checked = order.checked;
+    }
+  }
+  EXPECT_GT(checked, 400);
+  EXPECT_LE(worst, checked / 50);  // measured: see docs/cloth.md (Layers) for the state of this guard
+  // Without the guard the measure does see crossings: it is not blind.
+  o.layer_order_guard = false;
+  ClothSimulator unguarded(stack_layers(garments, 0.004), o);
+  int crossed = 0;
+  for (int step = 0; step < 480; ++step) {
+    ASSERT_TRUE(unguarded.step().ok);
+    if (step % 24 == 23)
+      crossed = std::max(crossed, layer_order(unguarded.model(), unguarded.positions(), o.colliders).violations);
+  }
+  EXPECT_GT(crossed, worst);
+}
+
+TEST(Layers, SceneBuildsDoubleAndStackedLayersWithThicknessFromHeat) {
+  test::TempDir dir;
+  const std::string scene = dir.file("s.json");
+  std::ofstream(scene) << R"({"cloths": [
+      {"grid": {"size": [1, 1], "resolution": [8, 8], "center": [0, 0.5, 0]}, "fabric": "ivory-rib-knit", "pins": [[0, 0]]},
+      {"grid": {"size": [1, 1], "resolution": [8, 8], "center": [0, 0.6, 0]}, "fabric": "royal-target",
+       "thickness": {"t_skin": 37, "t_env": -20, "time": 3600}, "pins": [[7, 7]]},
+      {"grid": {"size": [1, 1], "resolution": [4, 4], "center": [0, 0.7, 0]}, "thickness": {"mm": 5, "min_mm": 4, "max_mm": 8}}],
+    "simulation": {"layer_separation": 0.003}})";
+  const ClothScene s = load_cloth_scene(scene);
+  ASSERT_EQ(s.garments.size(), 3u);
+  EXPECT_FALSE(s.garments[0].double_layer);
+  EXPECT_TRUE(s.garments[1].double_layer);
+  EXPECT_EQ(s.garments[1].first_vertex, 64);
+  EXPECT_EQ(s.garments[1].vertices, 128);
+  // royal-target by heat: the same figures as the thickness library gives.
+  const ThicknessResult heat = [] {
+    ThicknessOptions o;
+    o.t_env = -20;
+    return compute_thickness(fabric_by_name("royal-target").composition, o);
+  }();
+  EXPECT_DOUBLE_EQ(s.garments[1].thickness.thickness, heat.thickness);
+  EXPECT_DOUBLE_EQ(s.garments[1].thickness.max, heat.thickness_max);
+  EXPECT_DOUBLE_EQ(s.garments[2].thickness.thickness, 0.005);
+  EXPECT_EQ(s.pins, (std::vector<int>{0, 64 + 63, 64 + 64 + 63}));  // both layers of garment 1 pinned
+  ASSERT_EQ(s.model.layer_offset.size(), 5u);
+  EXPECT_NEAR(s.model.layer_offset[1], 0.003, 1e-12);
+  EXPECT_NEAR(s.model.layer_offset[2], 0.003 + heat.thickness, 1e-12);
+
+  auto error_of = [&](const std::string& text) {
+    std::ofstream(scene) << text;
+    try {
+      load_cloth_scene(scene);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(error_of(R"({"cloth": {"grid": {}, "thickness": {"mm": 5, "min_mm": 6}}})").find("min_mm"), std::string::npos);
+  EXPECT_NE(error_of(R"({"cloth": {"grid": {}, "thickness": {"t_skin": 20, "t_env": 20}}})").find("thickness"), std::string::npos);
+  EXPECT_NE(error_of(R"({"cloth": {"grid": {}, "thickness": "thick"}})").find("heat"), std::string::npos);
+  EXPECT_NE(error_of(R"({"cloth": {"grid": {}}, "cloths": []})").find("exactly one"), std::string::npos);
+  EXPECT_NE(error_of(R"({"cloths": [{"chain": {}, "total_mass": 1}]})").find("chain"), std::string::npos);
+}
+
+TEST(Layers, EveryExampleSceneLoads) {
+  int scenes = 0, double_layers = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(std::string(DRESSKIT_SOURCE_DIR) + "/examples")) {
+    if (entry.path().extension() != ".json") continue;
+    SCOPED_TRACE(entry.path().string());
+    const ClothScene s = load_cloth_scene(entry.path().string());
+    EXPECT_GT(s.model.rest_positions.rows(), 0);
+    for (const GarmentInfo& g : s.garments) double_layers += g.double_layer;
+    ++scenes;
+  }
+  EXPECT_GE(scenes, 15);
+  EXPECT_EQ(double_layers, 7);  // four fabrics on the sphere, the pillow, two stacked scenes
+}
