@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cassert>
-#include <limits>
 #include <cmath>
+#include <limits>
 
 #include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/spring_kernels.h"
@@ -164,15 +164,13 @@ double ClothSimulator::mean_strain() const {
   return over_structural_strains(model_.springs, x_, 0.0, [](double a, double e) { return a + e; }) / n;
 }
 
-// Position-based strain limiting: Gauss–Seidel sweeps over structural and shear springs, shortening
-// each spring longer than (1 + limit) L0 (a pinned end stays, free ends move half-way each), until
-// none is longer or the sweep cap is reached; velocities follow the corrections. Plain Gauss–Seidel
-// converges slowly when many springs are taut at once: the heavy hanging cloth of the tests needs up
-// to ~470 sweeps in its first fall (ordering the springs by distance from the pins gained only 3 %).
-// Gauss–Seidel position correction: each violated spring is brought back to its bound, a pinned end
-// staying put and free ends moving half-way each. Two kinds of bound: the strain limit on the cloth's
-// own springs (with options_.strain_limiting) and the explicit [min, max] of the listed springs
-// (the inter-layer springs of double layers: always).
+// Position-based strain limiting: Gauss–Seidel sweeps that bring each violated spring back to its
+// bound (a pinned end stays, free ends move half-way each) until none is violated or the sweep cap
+// is reached; velocities follow the corrections. Two kinds of bound: (1 + limit) L0 on the cloth's
+// structural and shear springs (with options_.strain_limiting), and the explicit [min, max] of the
+// listed springs (a double layer's inter-layer springs: always). Plain Gauss–Seidel converges slowly
+// when many springs are taut at once: the heavy hanging cloth of the tests needs up to ~470 sweeps in
+// its first fall (ordering the springs by distance from the pins gained only 3 %).
 void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r) {
   const SpringSet& s = model_.springs;
   const double limit = 1.0 + options_.strain_limit;
