@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <random>
 #include <Eigen/Eigenvalues>
 
 #include "dresskit/cloth/fabric.h"
@@ -104,4 +105,20 @@ TEST(SpringKernels, DampingOpposesTheRelativeVelocityAlongTheSpring) {
   const Eigen::Vector3d xi(0, 0, 0), xj(2, 0, 0);
   const Eigen::Vector3d f = spring_damping_force(3.0, xi, xj, Eigen::Vector3d(1, 5, 0), Eigen::Vector3d(-1, 0, 7));
   EXPECT_TRUE(f.isApprox(Eigen::Vector3d(-6.0, 0, 0)));
+}
+
+TEST(StiffnessLaw, InlinedFittedKMatchesTheLaw) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> stiffness(1.0, 500.0), strain(-0.2, 0.5);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const double k0 = stiffness(rng), kk = stiffness(rng), e = strain(rng);  // kk < k0 half the time
+    const StiffnessLaw law = StiffnessLaw::fitted(k0, kk, kKneeStrain);
+    EXPECT_NEAR(fitted_k(k0, kk, kKneeStrain, e), law.k(e), 1e-12 * law.k(e)) << k0 << " " << kk << " " << e;
+  }
+  // At the knots themselves, where the segment changes.
+  for (int s = 0; s <= 4; ++s) {
+    const double e = s * kKneeStrain / 3.0;
+    const StiffnessLaw law = StiffnessLaw::fitted(10.0, 40.0, kKneeStrain);
+    EXPECT_NEAR(fitted_k(10.0, 40.0, kKneeStrain, e), law.k(e), 1e-12 * law.k(e)) << s;
+  }
 }

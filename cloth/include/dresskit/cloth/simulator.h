@@ -118,6 +118,8 @@ class ClothSimulator {
   double gravity_energy() const;  ///< −Σ m g·x [J]
   /// Total force on each particle [N] (springs, damping, air, gravity); zero rows for pinned ones.
   Eigen::MatrixX3d forces() const;
+  /// The same into f, reusing its storage (no allocation when it already has #V rows).
+  void forces(Eigen::MatrixX3d& f) const;
   /// Largest and mean strain over structural springs.
   double max_strain() const;
   double mean_strain() const;
@@ -158,6 +160,7 @@ class ClothSimulator {
   std::vector<std::array<int, 12>> spring_offsets_;  ///< per spring: blocks ii, jj, ij, ji × 3 columns
   std::vector<std::array<int, 3>> vertex_offsets_;   ///< per vertex: its diagonal block's 3 columns
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
+  std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
 };
 
 }  // namespace dresskit

@@ -2,6 +2,7 @@
 // The nonlinear spring law: a secant stiffness k(ε) [N/m] that is piecewise linear in the strain
 // ε = L/L0 − 1 with four segments for ε ≥ 0, so F = k(ε) (L − L0) (the form of methods.md §1).
 // Pure functions; value, derivative and energy side by side.
+#include <algorithm>
 #include <array>
 
 namespace dresskit {
@@ -30,5 +31,19 @@ struct StiffnessLaw {
   /// d tension / dL [N/m] = k'(ε) ε + k(ε).
   double tension_derivative(double L, double L0) const;
 };
+
+/// k(ε) of StiffnessLaw::fitted(k0, k_knee, knee_strain) without building the law: the segment comes
+/// from ε directly (the knots are evenly spaced), so the explicit force loop needs neither the law
+/// object nor a search. Equal to the law's k up to rounding (tests/cloth/test_stiffness_law.cpp).
+inline double fitted_k(double k0, double k_knee, double knee_strain, double e) {
+  if (e <= 0.0) return k0;
+  const double per_strain = 1.0 / knee_strain;  // folded to a constant when knee_strain is one
+  const double rise = std::max(k_knee - k0, 0.0);
+  const double u = 3.0 * per_strain * e;  // position in knot intervals
+  if (u >= 3.0) return k0 + rise + std::max(2.0 * rise, k0 + rise) * per_strain * (e - knee_strain);
+  const int s = static_cast<int>(u);
+  // Knots k0 + rise (s/3)²; between knots s and s+1 the rise grows by (2s + 1)/9 linearly.
+  return k0 + rise * (1.0 / 9.0) * (s * s + (u - s) * (2 * s + 1));
+}
 
 }  // namespace dresskit
