@@ -326,7 +326,8 @@ ClothScene load_cloth_scene(const std::string& path) {
     s.allow({"integrator", "linear_solver", "dt", "duration", "fps", "gravity", "strain_limit",
              "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
-             "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard"});
+             "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard",
+             "projective_iterations"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -355,6 +356,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
     o.layer_order_guard = s.boolean("layer_order_guard", o.layer_order_guard);
+    o.projective_iterations = static_cast<int>(s.number("projective_iterations", o.projective_iterations, 1, 10000));
   }
   check_options(scene.simulation);
   return scene;

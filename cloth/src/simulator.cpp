@@ -18,7 +18,8 @@ Integrator parse_integrator(const std::string& text) {
   if (text == "symplectic" || text == "symplectic_euler") return Integrator::symplectic_euler;
   if (text == "implicit" || text == "implicit_euler") return Integrator::implicit_euler;
   if (text == "newton") return Integrator::newton;
-  throw InputError("integrator: '" + text + "' is not symplectic, implicit or newton");
+  if (text == "projective") return Integrator::projective;
+  throw InputError("integrator: '" + text + "' is not symplectic, implicit, newton or projective");
 }
 
 std::string to_string(Integrator integrator) {
@@ -26,6 +27,7 @@ std::string to_string(Integrator integrator) {
     case Integrator::symplectic_euler: return "symplectic";
     case Integrator::implicit_euler: return "implicit";
     case Integrator::newton: return "newton";
+    case Integrator::projective: return "projective";
   }
   return "?";
 }
@@ -51,6 +53,7 @@ void check_options(const SimulationOptions& o) {
   }
   need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
   need(o.newton_iterations > 0, "newton_iterations: must be positive");
+  need(o.projective_iterations > 0, "projective_iterations: must be positive");
   need(std::isfinite(o.newton_tolerance) && o.newton_tolerance > 0.0, "newton_tolerance: must be positive");
   need(std::isfinite(o.dt_min) && o.dt_min > 0.0 && o.dt_min <= o.dt, "dt_min: must be positive and at most dt");
   need(std::isfinite(o.max_strain_change) && o.max_strain_change > 0.0, "max_strain_change: must be positive");
@@ -393,6 +396,7 @@ StepResult ClothSimulator::try_step(double dt) {
     case Integrator::symplectic_euler: step_symplectic(r); break;
     case Integrator::implicit_euler: step_implicit(r); break;
     case Integrator::newton: step_newton(r); break;
+    case Integrator::projective: step_projective(r); break;
   }
   // Constraints, then collisions: the layer guard and the length limits move particles, the
   // collision projection last keeps every particle outside the colliders.

@@ -5,6 +5,7 @@
 // backward Euler's incremental potential (stiff-robust).
 #include <Eigen/Sparse>
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -13,9 +14,9 @@
 
 namespace dresskit {
 
-enum class Integrator { symplectic_euler, implicit_euler, newton };
+enum class Integrator { symplectic_euler, implicit_euler, newton, projective };
 enum class LinearSolver { conjugate_gradient, ldlt };
-/// "symplectic", "implicit", "newton"; throws InputError naming the value otherwise.
+/// "symplectic", "implicit", "newton", "projective"; throws InputError naming the value otherwise.
 Integrator parse_integrator(const std::string& text);
 std::string to_string(Integrator integrator);
 
@@ -48,6 +49,9 @@ struct SimulationOptions {
   int cg_max_iterations = 1000;
   int newton_iterations = 10;       ///< Newton integrator: iterations per step at most
   double newton_tolerance = 1e-6;   ///< Newton integrator: stop when no particle moves more [m]
+  /// Projective dynamics: local/global iterations per step at most; it also stops when no particle
+  /// moves more than newton_tolerance in an iteration.
+  int projective_iterations = 10;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
   /// Adaptive time step: a failed step, or one whose largest strain changes by more than
   /// max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm steps
@@ -133,6 +137,7 @@ class ClothSimulator {
   void step_symplectic(StepResult& r);
   void step_implicit(StepResult& r);
   void step_newton(StepResult& r);
+  void step_projective(StepResult& r);
   void assemble_system(bool with_spring_damping, Eigen::VectorXd* Kv);
   bool solve_system(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess, Eigen::VectorXd& sol,
                     StepResult& r);
@@ -161,6 +166,10 @@ class ClothSimulator {
   std::vector<std::array<int, 3>> vertex_offsets_;   ///< per vertex: its diagonal block's 3 columns
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
+  /// Projective dynamics' prefactored global matrix, built at its first step and again when the
+  /// step size or the pins change (projective.cpp).
+  struct Projective;
+  std::shared_ptr<Projective> projective_;
 };
 
 }  // namespace dresskit
