@@ -3,7 +3,7 @@
 // solver tolerances (projective dynamics: iterations per step). Error = RMS distance of the vertices from a reference run (implicit Euler at
 // 1/4800 s, CG tolerance 1e-10) at t = 1 s, over the cloth's size (1 m). Cost = wall time per 1/60 s
 // of simulated time, one core. Writes CSV.
-// Usage: bench_cloth_error [out.csv=out/bench/error_vs_time.csv] [--quick]
+// Usage: bench_cloth_error [out.csv=out/bench/error_vs_time.csv] [--quick] [--only INTEGRATOR]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -47,8 +47,10 @@ Run simulate(const ClothModel& model, const std::vector<int>& pins, SimulationOp
 int main(int argc, char** argv) {
   std::string csv_path = "out/bench/error_vs_time.csv";
   bool quick = false;
+  std::string only;  // --only NAME: just that integrator's runs (and the reference)
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0) quick = true;
+    else if (std::strcmp(argv[a], "--only") == 0 && a + 1 < argc) only = argv[++a];
     else csv_path = argv[a];
   }
   const int n = 81;
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
   std::ofstream csv(csv_path);
   csv << "integrator,label,dt,cg_tolerance,wall_seconds,ms_per_frame,relative_error,stable\n";
   auto record = [&](const SimulationOptions& o, const std::string& label) {
+    if (!only.empty() && to_string(o.integrator) != only) return;
     const Run r = simulate(model, pins, o);
     const double error = r.ok ? std::sqrt((r.x - reference.x).rowwise().squaredNorm().mean()) / 1.0 : NAN;
     const double ms_per_frame = r.wall / 60.0 * 1e3;

@@ -1,14 +1,18 @@
 // Projective dynamics (Bouaziz et al. 2014, "Projective Dynamics: Fusing Constraint Projections for
 // Fast Simulation"; for mass-spring systems Liu et al. 2013, "Fast Simulation of Mass-Spring
 // Systems"): backward Euler's incremental potential with every spring as the quadratic
-// w/2 |xj − xi − d|², d its current direction at rest length. Local step: d per spring; global step:
-// one constant, prefactored linear system for the three coordinate columns. The weight w is the
-// spring's stiffness at rest (the first segment of its law): stiffening past the knee, spring
-// damping and dynamic stiffness are not modelled; strain limiting after the step bounds the strain.
+// w/2 |xj − xi − d|². Global step: one constant, prefactored linear system for the three coordinate
+// columns. Local step: d along the spring with the length ℓ = L − t(L)/w, so that the quadratic's
+// force w (L − ℓ) equals the spring law's tension t(L) at the current length (the nonlinear law,
+// with dynamic stiffness, enters through the targets while the matrix stays constant). A converged
+// step is therefore backward Euler with the full law. w is the spring's stiffness at the knee (at
+// least its stiffness at rest): the fixed-point iteration contracts while the law's local stiffness
+// stays within about twice w. Spring damping is not modelled (as in the Newton integrator).
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
 #include "dresskit/cloth/simulator.h"
+#include "dresskit/cloth/stiffness_law.h"
 #include "simulator_internal.h"
 
 namespace dresskit {
@@ -41,7 +45,7 @@ void ClothSimulator::step_projective(StepResult& r) {
     };
     for (int k = 0; k < s.size(); ++k) {
       const int i = s.i[k], j = s.j[k];
-      const double w = s.k_rest[k];
+      const double w = std::max(s.k_rest[k], s.k_knee[k]);
       couple(i, i, w);
       couple(j, j, w);
       couple(i, j, -w);
@@ -78,14 +82,23 @@ void ClothSimulator::step_projective(StepResult& r) {
   for (int v = 0; v < n; ++v)
     if (!pinned_[v]) x_.row(v) = x0.row(v) + h * v_.row(v);
   Eigen::MatrixX3d rhs(n, 3);
+  const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : 0.0;
   for (int it = 0; it < options_.projective_iterations; ++it) {
     rhs = fixed;
-    for (int k = 0; k < s.size(); ++k) {  // local step: each spring's rest-length target
+    for (int k = 0; k < s.size(); ++k) {  // local step: each spring's target
       const int i = s.i[k], j = s.j[k];
       Eigen::Vector3d e = detail::row(x_, j) - detail::row(x_, i);
-      const double L = e.norm();
-      if (L < 1e-12) e = detail::row(model_.rest_positions, j) - detail::row(model_.rest_positions, i);
-      const Eigen::Vector3d d = s.k_rest[k] * s.rest_length[k] / std::max(e.norm(), 1e-300) * e;
+      double L = e.norm();
+      if (L < 1e-12) {  // no direction: take the rest direction
+        e = detail::row(model_.rest_positions, j) - detail::row(model_.rest_positions, i);
+        L = 0.0;
+      }
+      const double L0 = s.rest_length[k], w = std::max(s.k_rest[k], s.k_knee[k]);
+      const double strain = L / L0 - 1.0;
+      double t = fitted_k(s.k_rest[k], s.k_knee[k], kKneeStrain, strain) * strain * L0;
+      if (beyond > 0.0 && L > beyond * L0) t *= L / L0;
+      const double target = std::max(L - t / w, 0.0);
+      const Eigen::Vector3d d = (w * target / e.norm()) * e;
       if (!pinned_[j]) rhs.row(j) += d.transpose();
       if (!pinned_[i]) rhs.row(i) -= d.transpose();
     }
