@@ -354,7 +354,8 @@ TEST(Simulator, ForceLoopMatchesTheSpringKernelsWithEverySwitch) {
 
 // Projective dynamics carries the nonlinear law through its local targets, so its settled chain is
 // the same closed form; its fixed-point iteration contracts while the law's local stiffness stays
-// within about twice the weight (the knee stiffness), so this chain is loaded to below the knee.
+// within about twice the weight (the tangent stiffness below the knee), so this chain is loaded to
+// below the knee.
 TEST(Simulator, ProjectiveDynamicsMatchesTheNonlinearChainBelowTheKnee) {
   const int n = 8;
   const double L0 = 0.1, g = 9.81;
