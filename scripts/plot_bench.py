@@ -44,12 +44,17 @@ def error(rows, out):
         if r["stable"] != "1":
             unstable.add(r["integrator"])
             continue
-        key = r["integrator"] + ("" if r["integrator"] == "symplectic" else ", CG tol %s" % r["cg_tolerance"])
-        series.setdefault(key, []).append((float(r["ms_per_frame"]), float(r["relative_error"]), r["label"].split(" tol")[0]))
+        if r["integrator"] == "projective":  # one line per iteration count, over the time steps
+            key = "projective, %s iterations" % r["label"].split(" it ")[1]
+        else:
+            key = r["integrator"] + ("" if r["integrator"] == "symplectic" else ", CG tol %s" % r["cg_tolerance"])
+        label = r["label"].split(" tol")[0].split(" it ")[0]
+        series.setdefault(key, []).append((float(r["ms_per_frame"]), float(r["relative_error"]), label))
     for key, pts in sorted(series.items()):
         pts.sort()
-        ax.loglog([p[0] for p in pts], [p[1] for p in pts], "o-", label=key)
-        if key.endswith("0.001"):
+        style = "s--" if key.startswith("projective") else "o-"
+        ax.loglog([p[0] for p in pts], [p[1] for p in pts], style, label=key, ms=4)
+        if key.endswith("0.001") or key == "projective, 5 iterations":
             for p in pts:
                 ax.annotate(p[2], (p[0], p[1]), fontsize=7, xytext=(-40, -3), textcoords="offset points")
     ax.axhline(0.01, color="grey", ls="--", lw=0.8)
@@ -61,7 +66,7 @@ def error(rows, out):
         title += "\n(unstable at every tested step: %s)" % ", ".join(sorted(unstable))
     ax.set_title(title)
     ax.set_xlim(1, 1000)
-    ax.legend()
+    ax.legend(fontsize=7)
     fig.tight_layout()
     fig.savefig(out, dpi=90)
 
