@@ -37,6 +37,27 @@ double total_energy(const ClothSimulator& s) {
 }
 
 std::vector<int> top_corners(int n) { return {n * (n - 1), n * n - 1}; }  // j = n−1 row, ends
+
+// The hanging chain's static closed form: each spring's tension equals the weight below it, its
+// length found by bisection on the spring law; particle s + 1 hangs at minus the sum of the lengths.
+void expect_chain_closed_form(const ClothModel& model, const std::vector<double>& masses,
+                              const Eigen::MatrixX3d& x, double g = 9.81) {
+  const int n = static_cast<int>(masses.size());
+  double y = 0.0;
+  for (int s = 0; s + 1 < n; ++s) {
+    double below = 0.0;
+    for (int k = s + 1; k < n; ++k) below += masses[k];
+    const StiffnessLaw law = model.springs.law(s);
+    const double L0 = model.springs.rest_length[s];
+    double lo = L0, hi = 10 * L0;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (law.tension(mid, L0) < g * below ? lo : hi) = mid;
+    }
+    y -= 0.5 * (lo + hi);
+    EXPECT_NEAR(x(s + 1, 1), y, 1e-6 * std::abs(y)) << "particle " << s + 1;
+  }
+}
 }  // namespace
 
 TEST(Simulator, StiffnessMatrixIsMinusTheForceGradient) {
@@ -75,7 +96,7 @@ TEST(Simulator, StiffnessMatrixIsMinusTheForceGradient) {
 // solved here by bisection on the spring law; the simulator must settle to the same lengths.
 TEST(Simulator, HangingChainMatchesTheClosedForm) {
   const int n = 8;
-  const double L0 = 0.1, g = 9.81;
+  const double L0 = 0.1;
   std::vector<double> masses = {0.05, 0.02, 0.03, 0.01, 0.04, 0.02, 0.05, 0.08};
   const ClothModel model = chain(n, L0, 25.0, 100.0, masses);
   struct Config {
@@ -99,19 +120,7 @@ TEST(Simulator, HangingChainMatchesTheClosedForm) {
       ASSERT_TRUE(sim.step().ok);
       if (sim.forces().norm() < 1e-12 && sim.velocities().norm() < 1e-12) break;
     }
-    double y = 0.0;
-    for (int s = 0; s + 1 < n; ++s) {
-      double below = 0.0;
-      for (int k = s + 1; k < n; ++k) below += masses[k];
-      const StiffnessLaw law = model.springs.law(s);
-      double lo = L0, hi = 10 * L0;
-      for (int it = 0; it < 200; ++it) {
-        const double mid = 0.5 * (lo + hi);
-        (law.tension(mid, L0) < g * below ? lo : hi) = mid;
-      }
-      y -= 0.5 * (lo + hi);
-      EXPECT_NEAR(sim.positions()(s + 1, 1), y, 1e-6 * std::abs(y)) << "particle " << s + 1;
-    }
+    expect_chain_closed_form(model, masses, sim.positions());
     // Some springs are past the knee, so the nonlinear law is exercised.
     EXPECT_GT(sim.max_strain(), kKneeStrain);
   }
@@ -358,7 +367,7 @@ TEST(Simulator, ForceLoopMatchesTheSpringKernelsWithEverySwitch) {
 // below the knee.
 TEST(Simulator, ProjectiveDynamicsMatchesTheNonlinearChainBelowTheKnee) {
   const int n = 8;
-  const double L0 = 0.1, g = 9.81;
+  const double L0 = 0.1;
   std::vector<double> masses = {0.05, 0.02, 0.03, 0.01, 0.04, 0.02, 0.05, 0.08};
   for (double& m : masses) m *= 0.5;
   const ClothModel model = chain(n, L0, 25.0, 100.0, masses);
@@ -371,19 +380,7 @@ TEST(Simulator, ProjectiveDynamicsMatchesTheNonlinearChainBelowTheKnee) {
   ClothSimulator sim(model, o);
   sim.set_pinned({0});
   for (int step = 0; step < 3000; ++step) ASSERT_TRUE(sim.step().ok);
-  double y = 0.0;
-  for (int s = 0; s + 1 < n; ++s) {
-    double below = 0.0;
-    for (int k = s + 1; k < n; ++k) below += masses[k];
-    const StiffnessLaw law = model.springs.law(s);
-    double lo = L0, hi = 10 * L0;
-    for (int it = 0; it < 200; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (law.tension(mid, L0) < g * below ? lo : hi) = mid;
-    }
-    y -= 0.5 * (lo + hi);
-    EXPECT_NEAR(sim.positions()(s + 1, 1), y, 1e-6 * std::abs(y)) << "particle " << s + 1;
-  }
+  expect_chain_closed_form(model, masses, sim.positions());
   EXPECT_GT(sim.max_strain(), kKneeStrain / 3.0);  // past the first segment: the law is nonlinear
   EXPECT_LT(sim.max_strain(), kKneeStrain);
   EXPECT_DOUBLE_EQ(sim.positions()(0, 1), 0.0);  // the pin
