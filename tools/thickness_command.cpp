@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -34,6 +35,7 @@ json result_json(const std::string& name, const Composition& c, const ThicknessR
           {"threshold_c", r.threshold},
           {"t_skin_c", o.t_skin},
           {"t_env_c", o.t_env},
+          {"t_initial_c", std::isnan(o.t_initial) ? o.t_env : o.t_initial},
           {"time_s", o.exposure},
           {"solidity", o.solidity},
           {"conductivity_w_per_m_k",
@@ -84,6 +86,8 @@ void ThicknessCommand::add_to(CLI::App& app) {
   command->add_option("--t-skin", options.t_skin, "skin temperature [°C]")->capture_default_str();
   command->add_option("--t-env", options.t_env, "outside temperature [°C]")->capture_default_str();
   command->add_option("--time", options.exposure, "exposure time [s]")->capture_default_str();
+  command->add_option("--t-initial", options.t_initial,
+                      "the fabric's temperature at the start [°C]; default: --t-env");
   command->add_option("--threshold", options.threshold,
                       "threshold temperature [°C]; default: midway between --t-skin and --t-env");
   command->add_option("--solidity", options.solidity, "fibre volume fraction of the fabric")

@@ -111,6 +111,19 @@ TEST(Thickness, OrderedLimitsAndAgreementWithTheClosedForm) {
   EXPECT_NEAR(r4.thickness / r.thickness, 2.0, 0.01);
 }
 
+TEST(Thickness, AWarmerStartReachesDeeper) {
+  const Composition c = {{"wool", 1.0}};
+  ThicknessOptions o;
+  const double cold = compute_thickness(c, o).thickness;
+  o.t_initial = 0.0;  // between T_env and the 13.5 °C threshold
+  const ThicknessResult warm = compute_thickness(c, o);
+  EXPECT_GT(warm.thickness, cold);
+  // The erfc solution with the initial temperature as the far field: the threshold's fraction of
+  // (T_skin − T_initial) sets the depth.
+  const double expected = penetration_depth(warm.fabric.diffusivity_nominal(), o.exposure, o.t_skin, 0.0, 13.5);
+  EXPECT_NEAR(warm.thickness, expected, 0.01 * expected);
+}
+
 TEST(Thickness, AgreesAcrossSchemes) {
   const Composition c = parse_composition("nylon=0.87,spandex=0.13");
   ThicknessOptions o;

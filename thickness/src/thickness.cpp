@@ -27,7 +27,7 @@ double fabric_depth(double diffusivity, const ThicknessOptions& o, double domain
   problem.length = domain;
   problem.t_skin = o.t_skin;
   problem.t_env = o.t_env;
-  problem.t_initial = o.t_env;
+  problem.t_initial = std::isnan(o.t_initial) ? o.t_env : o.t_initial;
   problem.duration = o.exposure;
   HeatResult solved = solve_heat(problem, o.heat);
   const double depth = crossing_depth(solved.x, solved.temperature, threshold);

@@ -14,7 +14,9 @@ namespace dresskit {
 
 struct ThicknessOptions {
   double t_skin = 37.0;    ///< [°C]
-  double t_env = -10.0;    ///< [°C], ≠ t_skin; also the fabric's initial temperature
+  double t_env = -10.0;    ///< [°C], ≠ t_skin
+  /// The fabric's temperature when the exposure starts [°C]; NaN = t_env (a garment put on cold).
+  double t_initial = std::numeric_limits<double>::quiet_NaN();
   double exposure = 3600.0;  ///< [s], > 0
   /// [°C], strictly between t_env and t_skin; NaN = the midpoint (T_skin + T_env) / 2, where the
   /// fabric has lost half of the skin-to-air temperature difference.
