@@ -26,7 +26,8 @@ int main(int argc, char** argv) {
   ClothModel base = build_cloth(grid, fabric_by_name("gray-interlock"));
   base.mass.setOnes();  // unit masses: k is then k / m
   const double dts[] = {1.0 / 1000, 1.0 / 500, 1.0 / 240, 1.0 / 120, 1.0 / 60, 1.0 / 24};
-  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::implicit_euler, Integrator::newton}) {
+  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::implicit_euler, Integrator::newton,
+                                Integrator::projective}) {
     std::printf("%s: largest stable step per stiffness\n", to_string(integrator).c_str());
     for (int e = 1; e <= 8; ++e) {
       const double k = std::pow(10.0, e);

@@ -30,7 +30,8 @@ def stability(rows, out):
         ax.set_yticks(range(len(ks)), ["1e%d" % round(__import__("math").log10(k)) for k in ks])
         ax.set_xlabel("time step [s]")
         ax.set_ylabel("stiffness / particle mass [N/m/kg]")
-        titles = {"implicit": "implicit Euler", "newton": "Newton (backward Euler)", "symplectic": "symplectic Euler"}
+        titles = {"implicit": "implicit Euler", "newton": "Newton (backward Euler)", "symplectic": "symplectic Euler",
+                  "projective": "projective dynamics"}
         ax.set_title("%s: green = stable" % titles.get(name, name))
     fig.tight_layout()
     fig.savefig(out, dpi=90)
