@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -113,13 +114,10 @@ int ThicknessCommand::run() {
   } else if (!composition.empty()) {
     fabrics.emplace_back("custom", parse_composition(composition));
   } else if (!fabric_file.empty()) {
-    bool found = false;
-    for (const Fabric& f : load_fabrics(fabric_file))
-      if (f.name == fabric) {
-        fabrics.emplace_back(f.name, f.composition);
-        found = true;
-      }
-    if (!found) throw InputError(fabric_file + ": no fabric named '" + fabric + "'");
+    const std::vector<Fabric> file = load_fabrics(fabric_file);
+    const auto it = std::find_if(file.begin(), file.end(), [&](const Fabric& f) { return f.name == fabric; });
+    if (it == file.end()) throw InputError(fabric_file + ": no fabric named '" + fabric + "'");
+    fabrics.emplace_back(it->name, it->composition);
   } else {
     fabrics.emplace_back(fabric, fabric_by_name(fabric).composition);
   }

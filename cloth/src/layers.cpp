@@ -1,6 +1,7 @@
 #include "dresskit/cloth/layers.h"
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <map>
 #include <unordered_map>

@@ -67,6 +67,11 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   if (model_.layer.size() != x_.rows()) model_.layer = Eigen::VectorXi::Zero(x_.rows());
   if (model_.layer_offset.empty()) model_.layer_offset = {0.0};
   model_.layer_min_gap.resize(model_.layer_offset.size(), 0.0);
+  // A layer-guard push is at most a tenth of the mean spring length per step: larger jumps strain the
+  // springs beyond what the next solve can absorb (measured: full pushes blew the stacked scene up).
+  double rest_sum = 0.0;
+  for (double L : model_.springs.rest_length) rest_sum += L;
+  layer_push_cap_ = 0.1 * rest_sum / std::max(1, model_.springs.size());
   inv_rest_.resize(model_.springs.rest_length.size());
   for (std::size_t k = 0; k < inv_rest_.size(); ++k) inv_rest_[k] = 1.0 / model_.springs.rest_length[k];
   assert(model_.layer.maxCoeff() < static_cast<int>(model_.layer_offset.size()));
@@ -270,11 +275,6 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
 void ClothSimulator::keep_layer_order(StepResult& r) {
   const LayerContacts c = match_layers(model_, x_, options_.colliders);
   const int layers = static_cast<int>(model_.layer_offset.size());
-  // A push is at most a tenth of the mean spring length per step: larger jumps strain the springs
-  // beyond what the next solve can absorb (measured: full pushes blew the stacked scene up).
-  double mean_rest = 0.0;
-  for (double L : model_.springs.rest_length) mean_rest += L;
-  const double max_push = 0.1 * mean_rest / std::max(1, model_.springs.size());
   for (int l = 1; l < layers; ++l) {  // inner layers first: their pushes carry outwards
     for (int p = 0; p < x_.rows(); ++p) {
       if (model_.layer[p] != l || c.below_face[p] < 0 || pinned_[p]) continue;
@@ -282,7 +282,7 @@ void ClothSimulator::keep_layer_order(StepResult& r) {
       const double dp = options_.colliders[c.collider[p]].distance(row(x_, p), &n);
       const double needed = c.height_below(p, model_, x_, options_.colliders) + model_.layer_min_gap[l];
       if (dp >= needed) continue;
-      x_.row(p) += std::min(needed - dp, max_push) * n.transpose();
+      x_.row(p) += std::min(needed - dp, layer_push_cap_) * n.transpose();
       const double vn = v_.row(p).dot(n.transpose());
       if (vn < 0.0) v_.row(p) -= vn * n.transpose();
       ++r.layer_pushes;

@@ -166,6 +166,7 @@ class ClothSimulator {
   std::vector<std::array<int, 3>> vertex_offsets_;   ///< per vertex: its diagonal block's 3 columns
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
+  double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
   /// Projective dynamics' prefactored global matrix, built at its first step and again when the
   /// step size or the pins change (projective.cpp).
   struct Projective;
