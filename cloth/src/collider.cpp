@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
+#include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/mesh/errors.h"
 
 namespace dresskit {
@@ -43,6 +44,16 @@ Collider Collider::box(const Eigen::Vector3d& centre, const Eigen::Vector3d& hal
   return c;
 }
 
+Collider Collider::mesh(std::shared_ptr<const MeshDistance> body, double friction) {
+  if (!body) throw InputError("mesh collider: no body");
+  Collider c;
+  c.kind = Kind::mesh;
+  c.body = std::move(body);
+  c.friction = friction;
+  c.penalty = 20.0;
+  return c;
+}
+
 double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const {
   switch (kind) {
     case Kind::plane:
@@ -68,6 +79,8 @@ double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) co
       (*outward)(axis) = d(axis) >= 0.0 ? 1.0 : -1.0;
       return q(axis);
     }
+    case Kind::mesh:
+      return body->distance(p, outward);
   }
   return 0.0;
 }

@@ -93,6 +93,21 @@ void ClothSimulator::assemble_system(bool with_spring_damping, Eigen::VectorXd* 
     const double diag = pinned_[i] ? 1.0 : model_.mass(i) * (1.0 + h * options_.air_damping);
     for (int c = 0; c < 3; ++c) values[vertex_offsets_[i][c] + c] += diag;
   }
+  // Implicit Euler (Kv given): the penalty forces' stiffness, h² m a/δ exp(depth/δ) n nᵀ (zero beyond
+  // the profile's cap). Newton and projective dynamics leave the penalty out (no potential term):
+  // their contacts are the collision projection alone.
+  const double delta = options_.penalty_thickness;
+  for (std::size_t k = 0; Kv && k < contacts_.particle.size(); ++k) {
+    const int i = contacts_.particle[k];
+    if (pinned_[i] || contacts_.depth[k] >= 4.0 * delta) continue;
+    const double stiffness = model_.mass(i) * options_.colliders[contacts_.collider[k]].penalty / delta *
+                             std::exp(contacts_.depth[k] / delta);
+    const Eigen::Vector3d& nk = contacts_.normal[k];
+    Kv->segment<3>(3 * i) += stiffness * nk.dot(row(v_, i)) * nk;
+    const Eigen::Matrix3d B = h * h * stiffness * nk * nk.transpose();
+    for (int c = 0; c < 3; ++c)
+      for (int r3 = 0; r3 < 3; ++r3) values[vertex_offsets_[i][c] + r3] += B(r3, c);
+  }
 }
 
 // Solves system_ · sol = rhs with the chosen solver (CG starts from guess).

@@ -48,8 +48,11 @@ void check_options(const SimulationOptions& o) {
   need(o.wind.allFinite() && std::isfinite(o.gust_amplitude) && std::isfinite(o.gust_frequency),
        "wind: must be finite");
   need(std::isfinite(o.collision_margin) && o.collision_margin >= 0.0, "collision_margin: must be ≥ 0");
+  need(std::isfinite(o.penalty_thickness) && o.penalty_thickness > 0.0, "penalty_thickness: must be positive");
   for (const Collider& c : o.colliders) {
     need(std::isfinite(c.friction) && c.friction >= 0.0, "collider friction: must be ≥ 0");
+    need(std::isfinite(c.static_friction), "collider static_friction: must be finite");
+    need(std::isfinite(c.penalty) && c.penalty >= 0.0, "collider penalty: must be ≥ 0");
   }
   need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
   need(o.newton_iterations > 0, "newton_iterations: must be positive");
@@ -76,6 +79,7 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   for (std::size_t k = 0; k < inv_rest_.size(); ++k) inv_rest_[k] = 1.0 / model_.springs.rest_length[k];
   assert(model_.layer.maxCoeff() < static_cast<int>(model_.layer_offset.size()));
   set_pinned({});
+  find_contacts();
 }
 
 void ClothSimulator::set_pinned(const std::vector<int>& vertices) {
@@ -94,6 +98,7 @@ void ClothSimulator::set_state(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d
   assert(x.rows() == x_.rows() && v.rows() == v_.rows());
   x_ = x;
   v_ = v;
+  find_contacts();
 }
 
 double ClothSimulator::allowed_length(int s) const {
@@ -164,8 +169,37 @@ void ClothSimulator::forces(Eigen::MatrixX3d& f) const {
                        (options_.gravity[c] - options_.air_damping * (v_.col(c).array() - wind[c]));
   }
   add_spring_forces(x_, v_, f);
+  add_penalty_forces(f);
   for (int i = 0; i < x_.rows(); ++i)
     if (pinned_[i]) f.row(i).setZero();
+}
+
+namespace {
+/// exp(depth/δ) − 1 with the exponent capped at 4 (deeper particles are projected out anyway).
+double penalty_profile(double depth, double delta) { return std::exp(std::min(depth / delta, 4.0)) - 1.0; }
+}  // namespace
+
+void ClothSimulator::add_penalty_forces(Eigen::MatrixX3d& f) const {
+  for (std::size_t k = 0; k < contacts_.particle.size(); ++k) {
+    const int p = contacts_.particle[k];
+    const double a = options_.colliders[contacts_.collider[k]].penalty;
+    f.row(p) += model_.mass(p) * a * penalty_profile(contacts_.depth[k], options_.penalty_thickness) *
+                contacts_.normal[k].transpose();
+  }
+}
+
+void ClothSimulator::find_contacts() {
+  contacts_.clear();
+  for (int c = 0; c < static_cast<int>(options_.colliders.size()); ++c) {
+    const Collider& collider = options_.colliders[c];
+    if (collider.penalty <= 0.0) continue;
+    for (int i = 0; i < x_.rows(); ++i) {
+      const double zone = options_.collision_margin + model_.layer_offset[model_.layer[i]] + options_.penalty_thickness;
+      Eigen::Vector3d n;
+      const double d = collider.distance(row(x_, i), &n);
+      if (d < zone) contacts_.add(i, c, n, zone - d);
+    }
+  }
 }
 
 Eigen::SparseMatrix<double> ClothSimulator::stiffness_matrix(bool clamp_geometric) const {
@@ -298,23 +332,28 @@ Eigen::Vector3d ClothSimulator::wind_at(double t) const {
 // the outward normal where it entered (found by bisection on its path during the step; the nearest
 // surface point is wrong for a particle that went deeper than its distance to another face of a box),
 // or along the nearest normal if it was already inside. Its inward normal velocity is removed and its
-// tangential velocity reduced by Coulomb friction (μ × the removed normal speed).
+// tangential velocity stopped when it is under μ_static × the removed normal speed (static friction),
+// else reduced by μ × that speed (kinetic). The pass also records the particles in a penalty zone.
 void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
+  contacts_.clear();
+  const double delta = options_.penalty_thickness;
   for (int i = 0; i < x_.rows(); ++i) {
-    if (pinned_[i]) continue;
     // Outer layers keep clear of the layers beneath them too.
     const double margin = options_.collision_margin + model_.layer_offset[model_.layer[i]];
-    for (const Collider& c : options_.colliders) {
+    for (int ci = 0; ci < static_cast<int>(options_.colliders.size()); ++ci) {
+      const Collider& c = options_.colliders[ci];
       Eigen::Vector3d n;
       const Eigen::Vector3d x = row(x_, i);
       const double d = c.distance(x, &n);
-      if (d >= margin) continue;
+      if (c.penalty > 0.0 && d < margin + delta) contacts_.add(i, ci, n, margin + delta - std::max(d, margin));
+      if (d >= margin || pinned_[i]) continue;
       ++r.collisions;
       const Eigen::Vector3d x0 = row(x_start, i);
       Eigen::Vector3d unused;
       if (c.distance(x0, &unused) >= margin) {
         double lo = 0.0, hi = 1.0;
-        for (int it = 0; it < 40; ++it) {
+        const double path = (x - x0).norm();
+        for (int it = 0; it < 40 && (hi - lo) * path > 1e-7; ++it) {
           const double mid = 0.5 * (lo + hi);
           (c.distance(x0 + mid * (x - x0), &unused) >= margin ? lo : hi) = mid;
         }
@@ -330,8 +369,9 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
       if (vn < 0.0) {
         v -= vn * n;
         const Eigen::Vector3d vt = v - v.dot(n) * n;
-        const double t = vt.norm();
-        if (t > 0.0) v -= std::min(1.0, c.friction * -vn / t) * vt;
+        const double t = vt.norm(), mu_static = c.static_friction < 0.0 ? c.friction : c.static_friction;
+        if (t <= mu_static * -vn) v -= vt;        // static: sticks
+        else v -= (c.friction * -vn / t) * vt;   // kinetic: slides, slowed
       }
       v_.row(i) = v.transpose();
     }
@@ -341,6 +381,7 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
 double ClothSimulator::static_residual() const {
   Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(x_.rows(), 3);
   add_spring_forces(x_, Eigen::MatrixX3d::Zero(x_.rows(), 3), f);
+  add_penalty_forces(f);
   double worst = 0.0;
   for (int i = 0; i < x_.rows(); ++i) {
     if (pinned_[i]) continue;

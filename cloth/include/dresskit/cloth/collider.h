@@ -1,22 +1,35 @@
 #pragma once
-// Analytic colliders: plane, sphere and axis-aligned box, with signed distance and outward normal.
+// Colliders: analytic ones (plane, sphere, axis-aligned box) and body meshes (a precomputed signed
+// distance, cloth/mesh_distance.h), each with a signed distance, an outward normal and friction.
 #include <Eigen/Core>
+#include <memory>
 #include <string>
 
 namespace dresskit {
 
+class MeshDistance;
+
 struct Collider {
-  enum class Kind { plane, sphere, box };
+  enum class Kind { plane, sphere, box, mesh };
   Kind kind = Kind::plane;
   Eigen::Vector3d point = Eigen::Vector3d::Zero();     ///< plane point, sphere or box centre [m]
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();   ///< plane normal (unit)
   double radius = 0.0;                                 ///< sphere radius [m]
   Eigen::Vector3d half_size = Eigen::Vector3d::Zero(); ///< box half extents [m]
-  double friction = 0.3;                               ///< Coulomb coefficient [unitless]
+  std::shared_ptr<const MeshDistance> body;            ///< mesh colliders: the body's distance
+  double friction = 0.3;         ///< kinetic Coulomb coefficient [unitless]
+  /// Static coefficient [unitless]: a sliding particle whose tangential speed is at most this × the
+  /// normal speed the contact removed stops; a negative value means "the same as friction".
+  double static_friction = -1.0;
+  /// Penalty force a in f = m a (exp(depth / δ) − 1) n on a particle closer than the collision
+  /// margin + δ (SimulationOptions::penalty_thickness), depth measured from there [m/s²]; 0 = none.
+  /// Mesh colliders default to 20 (the particle rests about 0.6 δ above the margin), analytic ones 0.
+  double penalty = 0.0;
 
   static Collider plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double friction = 0.3);
   static Collider sphere(const Eigen::Vector3d& centre, double radius, double friction = 0.3);
   static Collider box(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_size, double friction = 0.3);
+  static Collider mesh(std::shared_ptr<const MeshDistance> body, double friction = 0.3);
 
   /// Signed distance [m] from p to the surface (negative inside) and the outward unit normal there.
   double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;

@@ -31,6 +31,9 @@ struct SimulationOptions {
   double gust_frequency = 0.0;  ///< f [Hz]
   std::vector<Collider> colliders;
   double collision_margin = 0.002;  ///< particles are kept this far outside colliders [m]
+  /// δ of the colliders' penalty force (Collider::penalty): it acts within δ beyond the margin and
+  /// grows as exp(depth / δ) (capped at depth 4δ) [m].
+  double penalty_thickness = 0.002;
   /// Several layers on analytic colliders: before the length limits and collisions, a particle that
   /// lies less than its layer's min gap (ClothModel::layer_min_gap) above the particle beneath it
   /// (cloth/layers.h, match_layers) is moved out along its nearest collider's normal (at most a tenth of the mean
@@ -146,6 +149,9 @@ class ClothSimulator {
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
   void keep_layer_order(StepResult& r);
+  /// Finds the particles in the colliders' penalty zones at the current positions (contacts_).
+  void find_contacts();
+  void add_penalty_forces(Eigen::MatrixX3d& f) const;
   void build_pattern();
   StepResult try_step(double dt);
   Eigen::Vector3d wind_at(double t) const;
@@ -167,6 +173,18 @@ class ClothSimulator {
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
+  /// Particles in a penalty zone at the current positions, found by the collision pass that ends
+  /// every step (so the next step's forces need no distance query): particle, collider, outward
+  /// normal and depth into the zone [m].
+  struct Contacts {
+    std::vector<int> particle, collider;
+    std::vector<Eigen::Vector3d> normal;
+    std::vector<double> depth;
+    void clear() { particle.clear(), collider.clear(), normal.clear(), depth.clear(); }
+    void add(int p, int c, const Eigen::Vector3d& n, double d) {
+      particle.push_back(p), collider.push_back(c), normal.push_back(n), depth.push_back(d);
+    }
+  } contacts_;
   /// Projective dynamics' prefactored global matrix, built at its first step and again when the
   /// step size or the pins change (projective.cpp).
   struct Projective;

@@ -1,0 +1,66 @@
+#pragma once
+// The signed distance to a body mesh, precomputed once per body: a grid of exact distances in a
+// narrow band around the surface (trilinear lookup, ~30 ns a query: what the cloth's collision
+// handling calls every step), the sign from ray parity along the three grid axes (majority vote), and
+// exact closest-point queries through a bounding volume hierarchy where the band does not reach
+// (deep inside, or outside the grid).
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dresskit/cloth/triangle_bvh.h"
+#include "dresskit/mesh/triangle_mesh.h"
+
+namespace dresskit {
+
+struct MeshDistanceOptions {
+  double cell = 0.005;     ///< grid spacing [m]
+  double band = 0.012;     ///< exact distances stored within this distance of the surface [m]; at
+                           ///< least 2√3 cells (raised to that)
+  double padding = 0.05;   ///< the grid reaches this far beyond the mesh's bounding box [m]
+};
+
+struct MeshDistanceReport {
+  bool closed = false;         ///< the mesh is closed and manifold (mesh/topology.h)
+  int boundary_edges = 0;
+  /// How inside was told from outside: "ray parity along x, y and z (closed mesh)", or, for a mesh
+  /// that is not closed, the fallback "majority of the ray parities along x, y and z (not closed)".
+  std::string sign_method;
+  int sign_disagreements = 0;  ///< grid points where the three parities did not all agree
+  Eigen::Vector3i grid = Eigen::Vector3i::Zero();  ///< points per axis
+  double cell = 0.0, band = 0.0;  ///< as used [m]
+  double build_seconds = 0.0;
+  std::size_t memory_bytes = 0;
+};
+
+class MeshDistance {
+ public:
+  /// Throws InputError when the mesh has no faces or a non-finite coordinate, or the options are out
+  /// of range; the grid is capped at 2e8 points (InputError naming the cell size beyond that).
+  explicit MeshDistance(const TriangleMesh& body, const MeshDistanceOptions& options = {});
+
+  /// Signed distance from p to the surface [m], negative inside, and the outward unit direction
+  /// (the normalised gradient of the distance).
+  double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
+  /// The same from the exact closest point (BVH) with the grid's sign: slow, for checks and far points.
+  double exact_distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
+  /// Inside by the grid's sign (nearest grid point's parity vote).
+  bool inside(const Eigen::Vector3d& p) const;
+
+  const MeshDistanceReport& report() const { return report_; }
+  const TriangleMesh& mesh() const { return mesh_; }
+
+ private:
+  int index(int i, int j, int k) const { return (k * size_[1] + j) * size_[0] + i; }
+
+  TriangleMesh mesh_;
+  TriangleBvh bvh_;
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
+  double h_ = 0.0, inv_h_ = 0.0, band_ = 0.0;
+  std::vector<float> phi_;  ///< signed distance per grid point, clamped to ±band [m]
+  MeshDistanceReport report_;
+};
+
+}  // namespace dresskit
