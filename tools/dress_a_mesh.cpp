@@ -8,6 +8,7 @@
 #include <iostream>
 #include <limits>
 
+#include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/scene.h"
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/errors.h"
@@ -233,6 +234,31 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     }
     worst_order = std::max(worst_order, layer_order(scene.model, sim.positions(), scene.simulation.colliders).violations);
   };
+  // Body meshes: how each was read, and the cloth particles inside it at the start and at the end.
+  auto inside_count = [&](const Collider& c, double* deepest) {
+    int count = 0;
+    for (int i = 0; i < sim.positions().rows(); ++i) {
+      Eigen::Vector3d n;
+      const double d = c.distance(sim.positions().row(i).transpose(), &n);
+      if (d < 0.0) ++count;
+      if (deepest) *deepest = std::max(*deepest, -d);
+    }
+    return count;
+  };
+  json bodies = json::array();
+  for (const Collider& c : scene.simulation.colliders) {
+    if (c.kind != Collider::Kind::mesh) continue;
+    const MeshDistanceReport& b = c.body->report();
+    bodies.push_back({{"closed", b.closed}, {"boundary_edges", b.boundary_edges}, {"sign_method", b.sign_method},
+                      {"sign_disagreements", b.sign_disagreements},
+                      {"grid", {b.grid[0], b.grid[1], b.grid[2]}}, {"cell_m", b.cell}, {"band_m", b.band},
+                      {"build_seconds", b.build_seconds}, {"particles_inside_at_start", inside_count(c, nullptr)}});
+    if (!b.closed) {
+      std::cerr << "dress-a-mesh: " << scene_path << ": a body mesh is not closed (" << b.boundary_edges
+                << " boundary edges): inside is the majority of three ray parities\n";
+    }
+  }
+  int deep_pushes = 0;
   const auto t0 = Clock::now();
   energy.push_back(sim.elastic_energy());
   track_layers();
@@ -247,6 +273,7 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
       break;
     }
     cg_iterations += r.solver_iterations;
+    deep_pushes += r.deep_pushes;
     smallest_dt = std::min(smallest_dt, r.dt);
     ++steps;
     // Frame k is the first state at or after time k / fps.
@@ -316,6 +343,17 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
       {"closest_collider_distance_m", std::isfinite(closest) ? json(closest) : json(nullptr)},
       {"stopped_reason", stopped},
       {"nan_detected", nan}};
+  if (!bodies.empty()) {
+    int k = 0;
+    for (const Collider& c : scene.simulation.colliders) {
+      if (c.kind != Collider::Kind::mesh) continue;
+      double deepest = 0.0;
+      bodies[k]["particles_inside_at_end"] = inside_count(c, &deepest);
+      bodies[k++]["deepest_inside_at_end_m"] = deepest;
+    }
+    report["bodies"] = bodies;
+    report["deep_pushes"] = deep_pushes;
+  }
   report["layers"] = scene.model.layer_offset.size();
   report["garments"] = garments;
   if (gap.springs) {

@@ -160,8 +160,15 @@ double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward
   const Eigen::Vector3d u = (p - origin_) * inv_h_;
   const int i = static_cast<int>(std::floor(u[0])), j = static_cast<int>(std::floor(u[1])),
             k = static_cast<int>(std::floor(u[2]));
-  if (i < 0 || j < 0 || k < 0 || i >= size_[0] - 1 || j >= size_[1] - 1 || k >= size_[2] - 1)
-    return exact_distance(p, outward);
+  if (i < 0 || j < 0 || k < 0 || i >= size_[0] - 1 || j >= size_[1] - 1 || k >= size_[2] - 1) {
+    // Outside the grid, which reaches at least a band beyond the mesh: the band plus the distance to
+    // the grid is a lower bound (no contact there needs more), pointing away from the grid's centre.
+    const Eigen::Vector3d lo = origin_, hi = origin_ + h_ * (size_ - Eigen::Vector3i::Ones()).cast<double>();
+    const Eigen::Vector3d inside = p.cwiseMax(lo).cwiseMin(hi);
+    const Eigen::Vector3d away = p - 0.5 * (lo + hi);
+    *outward = away.norm() > 0.0 ? Eigen::Vector3d(away.normalized()) : Eigen::Vector3d::UnitY();
+    return band_ + (p - inside).norm();
+  }
   const double fx = u[0] - i, fy = u[1] - j, fz = u[2] - k;
   const std::size_t sx = 1, sy = static_cast<std::size_t>(size_[0]), sz = sy * size_[1];
   const float* c = &phi_[index(i, j, k)];

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/thickness/thickness.h"
@@ -247,6 +248,26 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
   return garment;
 }
 
+/// A body mesh collider: the mesh in its own units (default: the scene's) and up axis, moved by
+/// translate (scene units), with its signed distance grid (cell and band in the scene's units).
+Collider read_mesh_collider(const Reader& c, const fs::path& folder, double scale) {
+  LoadOptions load;
+  load.units.metres_per_unit = scale;
+  if (c.has("units")) {
+    load.units.metres_per_unit = c.at("units").is_number() ? c.number("units", 1.0, 1e-12, 1e12)
+                                                           : Units::parse(c.text("units", "m")).metres_per_unit;
+  }
+  if (c.has("up")) load.up = parse_up_axis(c.text("up", "+y"));
+  if (!c.has("path")) c.fail("a mesh collider needs a path", "path");
+  TriangleMesh body = load_mesh((folder / c.text("path", "")).string(), load);
+  const Eigen::Vector3d shift = c.vector<3>("translate", Eigen::Vector3d::Zero()) * scale;
+  body.V.rowwise() += shift.transpose();
+  MeshDistanceOptions o;
+  o.cell = c.number("cell", o.cell / scale, 1e-9, 1e9) * scale;
+  o.band = c.number("band", o.band / scale, 1e-9, 1e9) * scale;
+  return Collider::mesh(std::make_shared<const MeshDistance>(body, o));
+}
+
 }  // namespace
 
 ClothScene load_cloth_scene(const std::string& path) {
@@ -315,9 +336,16 @@ ClothScene load_cloth_scene(const std::string& path) {
         c.allow({"type", "center", "half_size", "friction"});
         scene.simulation.colliders.push_back(Collider::box(c.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
                                                            c.vector<3>("half_size", Eigen::Vector3d::Zero()) * scale, friction));
+      } else if (type == "mesh") {
+        c.allow({"type", "path", "units", "up", "translate", "friction", "static_friction", "penalty", "cell", "band"});
+        scene.simulation.colliders.push_back(read_mesh_collider(c, folder, scale));
+        scene.simulation.colliders.back().friction = friction;
       } else {
-        c.fail("'" + type + "' is not sphere, plane or box", "type");
+        c.fail("'" + type + "' is not sphere, plane, box or mesh", "type");
       }
+      if (c.has("static_friction"))
+        scene.simulation.colliders.back().static_friction = c.number("static_friction", 0.0, 0.0, 10.0);
+      if (c.has("penalty")) scene.simulation.colliders.back().penalty = c.number("penalty", 0.0, 0.0, 1e6);
     }
   }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <limits>
 
@@ -75,6 +76,7 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   double rest_sum = 0.0;
   for (double L : model_.springs.rest_length) rest_sum += L;
   layer_push_cap_ = 0.1 * rest_sum / std::max(1, model_.springs.size());
+  deep_push_cap_ = 0.5 * layer_push_cap_;
   inv_rest_.resize(model_.springs.rest_length.size());
   for (std::size_t k = 0; k < inv_rest_.size(); ++k) inv_rest_[k] = 1.0 / model_.springs.rest_length[k];
   assert(model_.layer.maxCoeff() < static_cast<int>(model_.layer_offset.size()));
@@ -334,6 +336,17 @@ Eigen::Vector3d ClothSimulator::wind_at(double t) const {
 // or along the nearest normal if it was already inside. Its inward normal velocity is removed and its
 // tangential velocity stopped when it is under μ_static × the removed normal speed (static friction),
 // else reduced by μ × that speed (kinetic). The pass also records the particles in a penalty zone.
+// Moves particle i out to the margin along the collider's normal, again from where that lands (up to
+// four times: one push along a sharp feature's normal can fall short).
+void ClothSimulator::push_out(const Collider& c, double margin, int i) {
+  for (int it = 0; it < 4; ++it) {
+    Eigen::Vector3d n;
+    const double d = c.distance(row(x_, i), &n);
+    if (d >= margin) return;
+    x_.row(i) += (margin - d) * n.transpose();
+  }
+}
+
 void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
   contacts_.clear();
   const double delta = options_.penalty_thickness;
@@ -350,7 +363,8 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
       ++r.collisions;
       const Eigen::Vector3d x0 = row(x_start, i);
       Eigen::Vector3d unused;
-      if (c.distance(x0, &unused) >= margin) {
+      const double d0 = c.distance(x0, &unused);
+      if (d0 >= margin) {
         double lo = 0.0, hi = 1.0;
         const double path = (x - x0).norm();
         for (int it = 0; it < 40 && (hi - lo) * path > 1e-7; ++it) {
@@ -360,9 +374,19 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
         const Eigen::Vector3d entry = x0 + lo * (x - x0);
         c.distance(entry, &n);
         x_.row(i) -= std::min(0.0, (x - entry).dot(n)) * n.transpose();  // back to the entry plane
-        if (c.distance(row(x_, i), &unused) < margin) x_.row(i) = entry.transpose();  // curved surfaces
+        // Curved or concave surfaces: still inside the margin after that, out along the local normal;
+        // the entry point itself only if that leaves it inside the collider (in a crease narrower than
+        // the margin) — the entry point stops the particle sliding, so it is the last resort.
+        push_out(c, margin, i);
+        if (c.distance(row(x_, i), &unused) < 0.0) x_.row(i) = entry.transpose();
+      } else if (d0 >= 0.0) {  // started within the margin: back to it along the nearest normal
+        push_out(c, margin, i);
       } else {
-        x_.row(i) += (margin - d) * n.transpose();
+        // Started inside the collider (cloth that began inside a body): out by at most the deep-push
+        // cap per step, so that a deep particle does not tear its springs; it is reported.
+        const double push = margin - d;
+        if (push > deep_push_cap_) ++r.deep_pushes;
+        x_.row(i) += std::min(push, deep_push_cap_) * n.transpose();
       }
       Eigen::Vector3d v = row(v_, i);
       const double vn = v.dot(n);
@@ -433,6 +457,9 @@ StepResult ClothSimulator::try_step(double dt) {
   r.dt = dt;
   dt_ = dt;
   const Eigen::MatrixX3d x0 = x_, v0 = v_;
+  using Clock = std::chrono::steady_clock;
+  auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+  auto t = Clock::now();
   switch (options_.integrator) {
     case Integrator::symplectic_euler: step_symplectic(r); break;
     case Integrator::implicit_euler: step_implicit(r); break;
@@ -441,13 +468,18 @@ StepResult ClothSimulator::try_step(double dt) {
   }
   // Constraints, then collisions: the layer guard and the length limits move particles, the
   // collision projection last keeps every particle outside the colliders.
+  r.integrate_seconds = since(t);
+  t = Clock::now();
   if (r.ok && options_.layer_order_guard && model_.layer_offset.size() > 1 && !options_.colliders.empty())
     keep_layer_order(r);
   if (r.ok && (options_.strain_limiting || !model_.springs.limited.empty())) {
     const Eigen::MatrixX3d x_stepped = x_;
     limit_strain(x_stepped, r);
   }
+  r.constraint_seconds = since(t);
+  t = Clock::now();
   if (r.ok && !options_.colliders.empty()) collide(x0, r);
+  r.collision_seconds = since(t);
   if (r.ok && (!x_.allFinite() || !v_.allFinite())) {
     r.ok = false;
     r.failure = "non-finite state (NaN or infinity)";

@@ -41,7 +41,9 @@ class MeshDistance {
   explicit MeshDistance(const TriangleMesh& body, const MeshDistanceOptions& options = {});
 
   /// Signed distance from p to the surface [m], negative inside, and the outward unit direction
-  /// (the normalised gradient of the distance).
+  /// (the normalised gradient of the distance). Exact to the grid's interpolation within the band
+  /// and deep inside; farther outside it is a lower bound of at least the band (enough to tell that
+  /// there is no contact).
   double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
   /// The same from the exact closest point (BVH) with the grid's sign: slow, for checks and far points.
   double exact_distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;

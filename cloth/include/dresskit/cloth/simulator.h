@@ -76,8 +76,12 @@ struct StepResult {
   int springs_limited = 0;   ///< springs shortened by strain limiting in this step
   int collisions = 0;        ///< particles pushed out of colliders in this step
   int layer_pushes = 0;      ///< particles moved out by the layer-order guard in this step
+  int deep_pushes = 0;       ///< particles deeper than one push inside a collider (cloth started inside)
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
+  /// Wall time of the step's phases [s]: the integrator (forces and solve), the layer guard and
+  /// length limits, and the collision pass (of the last try when adaptive stepping retried).
+  double integrate_seconds = 0.0, constraint_seconds = 0.0, collision_seconds = 0.0;
 };
 
 struct SettleOptions {
@@ -148,6 +152,7 @@ class ClothSimulator {
                                const Eigen::MatrixX3d& v0) const;
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
+  void push_out(const Collider& c, double margin, int i);
   void keep_layer_order(StepResult& r);
   /// Finds the particles in the colliders' penalty zones at the current positions (contacts_).
   void find_contacts();
@@ -173,6 +178,7 @@ class ClothSimulator {
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
+  double deep_push_cap_ = 0.0;  ///< largest push out of a collider per step for a particle that started inside [m]
   /// Particles in a penalty zone at the current positions, found by the collision pass that ends
   /// every step (so the next step's forces need no distance query): particle, collider, outward
   /// normal and depth into the zone [m].
