@@ -150,10 +150,18 @@ bool MeshDistance::inside(const Eigen::Vector3d& p) const {
   const Eigen::Vector3d u = (p - origin_) * inv_h_;
   Eigen::Vector3i i;
   for (int a = 0; a < 3; ++a) {
-    i[a] = static_cast<int>(std::lround(u[a]));
-    if (i[a] < 0 || i[a] >= size_[a]) return false;  // outside the padded grid: outside the mesh
+    i[a] = static_cast<int>(std::floor(u[a]));
+    if (i[a] < 0 || i[a] >= size_[a] - 1) return false;  // outside the padded grid: outside the mesh
   }
-  return phi_[index(i[0], i[1], i[2])] < 0.0f;
+  // The sign of the trilinear value: the grid's best guess, right to the interpolation's accuracy.
+  const Eigen::Vector3d f = u - i.cast<double>();
+  double value = 0.0;
+  for (int corner = 0; corner < 8; ++corner) {
+    const int dx = corner & 1, dy = (corner >> 1) & 1, dz = corner >> 2;
+    value += (dx ? f[0] : 1 - f[0]) * (dy ? f[1] : 1 - f[1]) * (dz ? f[2] : 1 - f[2]) *
+             phi_[index(i[0] + dx, i[1] + dy, i[2] + dz)];
+  }
+  return value < 0.0;
 }
 
 double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const {
@@ -175,7 +183,13 @@ double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward
   const double c000 = c[0], c100 = c[sx], c010 = c[sy], c110 = c[sx + sy];
   const double c001 = c[sz], c101 = c[sx + sz], c011 = c[sy + sz], c111 = c[sx + sy + sz];
   const double deep = -band_ * 0.999;
-  if (std::min({c000, c100, c010, c110, c001, c101, c011, c111}) <= deep) return exact_distance(p, outward);
+  const double lowest = std::min({c000, c100, c010, c110, c001, c101, c011, c111});
+  if (lowest <= deep) return exact_distance(p, outward);
+  if (lowest >= -deep) {  // every corner beyond the band outside: no contact; a lower bound will do
+    const Eigen::Vector3d away = u - 0.5 * (size_ - Eigen::Vector3i::Ones()).cast<double>();
+    *outward = away.norm() > 0.0 ? Eigen::Vector3d(away.normalized()) : Eigen::Vector3d::UnitY();
+    return band_;
+  }
   // Trilinear value and its exact gradient.
   const double x00 = c000 + fx * (c100 - c000), x10 = c010 + fx * (c110 - c010);
   const double x01 = c001 + fx * (c101 - c001), x11 = c011 + fx * (c111 - c011);

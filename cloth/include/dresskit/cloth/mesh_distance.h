@@ -47,7 +47,7 @@ class MeshDistance {
   double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
   /// The same from the exact closest point (BVH) with the grid's sign: slow, for checks and far points.
   double exact_distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
-  /// Inside by the grid's sign (nearest grid point's parity vote).
+  /// Inside by the grid's sign (the trilinear value's sign; false outside the grid).
   bool inside(const Eigen::Vector3d& p) const;
 
   const MeshDistanceReport& report() const { return report_; }
