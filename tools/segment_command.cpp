@@ -106,16 +106,17 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
           {"isolated_vertices", r.isolated_vertices},
           {"duplicate_vertices_labelled", duplicates},
           {"relabelled_by_cleanup", r.relabelled_vertices},
+          {"normalized_cut", r.normalized_cut},
+          {"clusters_before_merge", r.clusters_before_merge},
           {"axes",
            {{"up", vec(r.axes.up)}, {"up_source", r.axes.up_source}, {"forward", vec(r.axes.forward)},
             {"forward_source", r.axes.forward_source}, {"left", vec(r.axes.left)}}},
           {"options",
            {{"affinity", to_string(o.affinity.kind)}, {"convex_weight", o.affinity.convex_weight},
             {"laplacian", to_string(o.laplacian)}, {"tolerance", o.eigen.tolerance}, {"ncv", o.eigen.ncv},
-            {"kmeans_restarts", o.kmeans.restarts}, {"seed", o.kmeans.seed}, {"cleanup", o.cleanup}}},
+            {"kmeans_restarts", o.kmeans.restarts}, {"over_segmentation", o.over_segmentation}, {"seed", o.kmeans.seed}, {"cleanup", o.cleanup}}},
           {"seconds",
-           {{"graph", r.seconds.graph}, {"eigen", r.seconds.eigen}, {"kmeans", r.seconds.kmeans},
-            {"cleanup", r.seconds.cleanup}, {"naming", r.seconds.naming}, {"total", r.seconds.total}}},
+           {{"graph", r.seconds.graph}, {"eigen", r.seconds.eigen}, {"clustering", r.seconds.clustering}, {"naming", r.seconds.naming}, {"total", r.seconds.total}}},
           {"vertex_labels_order", "input file vertex order (OBJ v lines)"},
           {"vertex_labels", file_labels},
           {"face_labels_order", "triangles of the loaded mesh (a quad a-b-c-d is a-b-c, a-c-d)"},
@@ -171,6 +172,9 @@ void SegmentCommand::add_to(CLI::App& app) {
   command->add_option("--laplacian", laplacian, "normalized or plain")->capture_default_str();
   command->add_option("--tolerance", options.eigen.tolerance, "eigen-solver tolerance")->capture_default_str();
   command->add_option("--ncv", options.eigen.ncv, "eigen-solver subspace size (0: automatic)")
+      ->capture_default_str();
+  command->add_option("--over-segmentation", options.over_segmentation,
+                      "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)")
       ->capture_default_str();
   command->add_flag("--json", as_json, "print labels.json's summary fields as JSON");
 }

@@ -146,6 +146,22 @@ int connected_components(const MeshGraph& graph, Eigen::VectorXi& component) {
   return count;
 }
 
+double normalized_cut(const MeshGraph& graph, const Eigen::VectorXi& labels) {
+  const int k = labels.size() ? labels.maxCoeff() + 1 : 0;
+  std::vector<double> cut(std::max(k, 0), 0.0), volume(std::max(k, 0), 0.0);
+  for (int e = 0; e < graph.num_edges(); ++e) {
+    const int a = labels(graph.from(e)), b = labels(graph.to(e));
+    if (a < 0 || b < 0) continue;
+    volume[a] += graph.affinity(e);
+    volume[b] += graph.affinity(e);
+    if (a != b) cut[a] += graph.affinity(e), cut[b] += graph.affinity(e);
+  }
+  double ncut = 0.0;
+  for (int l = 0; l < k; ++l)
+    if (volume[l] > 0) ncut += cut[l] / volume[l];
+  return ncut;
+}
+
 Adjacency adjacency(const MeshGraph& graph) {
   Adjacency a;
   a.start.assign(graph.num_vertices + 1, 0);

@@ -37,13 +37,15 @@ Eigen::MatrixXd seed_centres(const Eigen::MatrixXd& X, int k, std::mt19937& rng)
 }  // namespace
 
 KMeansResult kmeans(const Eigen::MatrixXd& X, int k, const KMeansOptions& options) {
-  const int n = static_cast<int>(X.rows());
+  const int n = static_cast<int>(X.rows()), dim = static_cast<int>(X.cols());
   assert(k >= 1 && k <= n);
+  // Points as columns: each distance reads contiguous memory.
+  const Eigen::MatrixXd P = X.transpose();
   std::mt19937 rng(options.seed);
   KMeansResult best;
   best.cost = std::numeric_limits<double>::infinity();
   for (int start = 0; start < std::max(1, options.restarts); ++start) {
-    Eigen::MatrixXd C = seed_centres(X, k, rng);
+    Eigen::MatrixXd C = seed_centres(X, k, rng).transpose();  // dim × k
     Eigen::VectorXi labels = Eigen::VectorXi::Constant(n, -1);
     double cost = 0.0;
     int it = 0;
@@ -54,32 +56,30 @@ KMeansResult kmeans(const Eigen::MatrixXd& X, int k, const KMeansOptions& option
         int arg = 0;
         double best_d = std::numeric_limits<double>::infinity();
         for (int c = 0; c < k; ++c) {
-          const double d = (X.row(i) - C.row(c)).squaredNorm();
-          if (d < best_d) {
-            best_d = d;
-            arg = c;
+          double d = 0.0;
+          for (int j = 0; j < dim; ++j) {
+            const double t = P(j, i) - C(j, c);
+            d += t * t;
           }
+          if (d < best_d) best_d = d, arg = c;
         }
         cost += best_d;
-        if (labels(i) != arg) {
-          labels(i) = arg;
-          changed = true;
-        }
+        if (labels(i) != arg) labels(i) = arg, changed = true;
       }
       if (!changed) break;
-      Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(k, X.cols());
+      Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(dim, k);
       Eigen::VectorXi count = Eigen::VectorXi::Zero(k);
       for (int i = 0; i < n; ++i) {
-        sum.row(labels(i)) += X.row(i);
+        sum.col(labels(i)) += P.col(i);
         ++count(labels(i));
       }
       for (int c = 0; c < k; ++c)
-        if (count(c) > 0) C.row(c) = sum.row(c) / count(c);  // an empty cluster keeps its centre
+        if (count(c) > 0) C.col(c) = sum.col(c) / count(c);  // an empty cluster keeps its centre
     }
     if (cost < best.cost) {
       best.cost = cost;
       best.labels = labels;
-      best.centres = C;
+      best.centres = C.transpose();
       best.iterations = it;
     }
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 
 #include "dresskit/mesh/errors.h"
@@ -20,6 +21,36 @@ std::vector<std::string> SegmentationResult::part_names() const {
 }
 
 namespace {
+
+// Rows of eigenvectors 1..dims, each scaled by 1/√λ (low frequencies weigh more), put on the unit
+// sphere (Ng, Jordan & Weiss) so that k-means sees directions from the hub, not distances.
+Eigen::MatrixXd spectral_embedding(const EigenResult& eigen, int dims) {
+  Eigen::MatrixXd Y = eigen.vectors.middleCols(1, dims);
+  for (int k = 0; k < dims; ++k) Y.col(k) /= std::sqrt(std::max(eigen.values(k + 1), 1e-300));
+  for (int i = 0; i < Y.rows(); ++i) {
+    const double norm = Y.row(i).norm();
+    if (norm > 0) Y.row(i) /= norm;
+  }
+  return Y;
+}
+
+void clean_up(const MeshGraph& graph, const Adjacency& adj, const Eigen::VectorXd& area, int smoothing,
+              Eigen::VectorXi& labels) {
+  merge_orphan_patches(graph, adj, area, labels);
+  smooth_label_boundaries(graph, adj, smoothing, labels);
+  merge_orphan_patches(graph, adj, area, labels);
+}
+
+// Renumbers the labels ≥ 0 to 0..m−1 in order of their value (a cluster may have vanished).
+void compact_labels(Eigen::VectorXi& labels) {
+  std::map<int, int> index;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) index.emplace(labels(i), 0);
+  int next = 0;
+  for (auto& [label, k] : index) k = next++;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) labels(i) = index[labels(i)];
+}
 
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
@@ -134,7 +165,8 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   const int k_max = o.parts > 0 ? o.parts : std::max(o.max_parts, C);
   for (int c = 0; c < C; ++c) {
     const int nc = static_cast<int>(comps[c].vertices.size());
-    const int nev = std::min(nc, k_max - C + 2);  // one more than the most parts it can get: the gap
+    // One more than the most parts it can get (for the gap) and the over-segmentation.
+    const int nev = std::min(nc, k_max - C + 2 + std::max(0, o.over_segmentation));
     const Eigen::SparseMatrix<double> L =
         graph_laplacian(sub_affinity(graph, local, component, c, nc), o.laplacian);
     comps[c].eigen = smallest_eigenpairs(L, nev, o.eigen);
@@ -147,6 +179,7 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   t = Clock::now();
   Eigen::VectorXi labels = Eigen::VectorXi::Constant(n, -1);
   std::vector<int> label_component;
+  const Adjacency adj = adjacency(graph);
   for (int c = 0; c < C; ++c) {
     const Component& comp = comps[c];
     const int base = static_cast<int>(label_component.size());
@@ -156,31 +189,46 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
       for (int v : comp.vertices) labels(v) = base;
       continue;
     }
-    // Spectral embedding: eigenvectors 1..k−1 scaled by 1/√λ (low frequencies weigh more), rows on
-    // the unit sphere (Ng, Jordan & Weiss), so that k-means sees directions, not distances to the hub.
-    const int dims = comp.parts - 1;
-    Eigen::MatrixXd Y = comp.eigen.vectors.middleCols(1, dims);
-    for (int k = 0; k < dims; ++k) Y.col(k) /= std::sqrt(std::max(comp.eigen.values(k + 1), 1e-300));
-    for (int i = 0; i < Y.rows(); ++i) {
-      const double norm = Y.row(i).norm();
-      if (norm > 0) Y.row(i) /= norm;
+    // Candidates: k-means with k, k + 1, …, k + over_segmentation clusters, each cleaned up and merged
+    // back to k parts by structure (merge_parts_towards_star), until one is a star. A candidate
+    // replaces the previous best only with more leaf parts (limbs hanging off a hub): plain k-means
+    // wins ties. (The normalised
+    // cut is no tie-breaker: on the bodies it prefers partitions that are worse against the truth.)
+    double best_ncut = 0.0;
+    int best_leaves = -1;
+    Eigen::VectorXi best;
+    int relabelled = 0;
+    for (int q = comp.parts; q <= comp.parts + std::max(0, o.over_segmentation); ++q) {
+      if (q > static_cast<int>(comp.vertices.size()) || q > comp.eigen.values.size()) break;
+      const KMeansResult km = kmeans(spectral_embedding(comp.eigen, q - 1), q, o.kmeans);
+      Eigen::VectorXi own = Eigen::VectorXi::Constant(n, -1);
+      for (size_t i = 0; i < comp.vertices.size(); ++i) own(comp.vertices[i]) = km.labels(i);
+      const Eigen::VectorXi raw = own;
+      if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, own);
+      compact_labels(own);
+      if (own.maxCoeff() + 1 > comp.parts) {
+        merge_parts_towards_star(graph, comp.parts, own);
+        if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, own);
+        compact_labels(own);
+      }
+      const int leaf_parts = count_leaf_parts(graph, own);
+      const double ncut = normalized_cut(graph, own);
+      if (leaf_parts > best_leaves) {
+        best_leaves = leaf_parts;
+        best_ncut = ncut;
+        best = own;
+        r.kmeans_cost = km.cost;
+        r.clusters_before_merge = q;
+        relabelled = q == comp.parts ? static_cast<int>((own.array() != raw.array()).count()) : -1;
+      }
+      // A star (one hub, every other part a leaf) is as good as structure gets: stop there.
+      if (best_leaves >= (comp.parts == 2 ? 2 : comp.parts - 1)) break;
     }
-    const KMeansResult km = kmeans(Y, comp.parts, o.kmeans);
-    r.kmeans_cost += km.cost;
-    for (size_t i = 0; i < comp.vertices.size(); ++i) labels(comp.vertices[i]) = base + km.labels(i);
+    for (int v : comp.vertices) labels(v) = best(v) >= 0 ? base + best(v) : -1;
+    r.normalized_cut += best_ncut;
+    if (relabelled >= 0) r.relabelled_vertices += relabelled;
   }
-  r.seconds.kmeans = since(t);
-
-  t = Clock::now();
-  if (o.cleanup) {
-    const Eigen::VectorXi before = labels;
-    const Adjacency adj = adjacency(graph);
-    merge_orphan_patches(graph, adj, area, labels);
-    smooth_label_boundaries(graph, adj, o.smoothing_iterations, labels);
-    merge_orphan_patches(graph, adj, area, labels);
-    r.relabelled_vertices = static_cast<int>((labels.array() != before.array()).count());
-  }
-  // Compact the labels (a k-means cluster or a patch may have vanished), keeping their order.
+    // Compact the labels (a k-means cluster or a patch may have vanished), keeping their order.
   std::vector<int> compact(label_component.size(), -1);
   std::vector<int> kept_component;
   for (int v = 0; v < n; ++v)
@@ -191,7 +239,7 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
     if (labels(v) >= 0) labels(v) = compact[labels(v)];
   r.parts_per_component.assign(C, 0);
   for (int c : kept_component) ++r.parts_per_component[c];
-  r.seconds.cleanup = since(t);
+  r.seconds.clustering = since(t);
 
   t = Clock::now();
   r.axes = estimate_axes(mesh.V, area, o.up, o.forward);

@@ -18,6 +18,16 @@ int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adjacency,
 int smooth_label_boundaries(const MeshGraph& graph, const Adjacency& adjacency, int iterations,
                             Eigen::VectorXi& labels);
 
+/// Merges adjacent parts until `target` labels remain (labels ≥ 0 of the vector, which must be
+/// 0..q−1 with every label present): each step takes the merge that leaves the most leaf parts (parts
+/// that touch exactly one other part: limbs, sleeves, trouser legs), then the lowest normalised cut.
+/// A body over-segmented into head, chest, belly and limbs thus merges chest and belly, not head and
+/// chest. Relabels to 0..target−1 and returns the number of leaf parts at the end.
+int merge_parts_towards_star(const MeshGraph& graph, int target, Eigen::VectorXi& labels);
+
+/// Number of leaf parts (touching exactly one other part) of a labelling (labels ≥ 0).
+int count_leaf_parts(const MeshGraph& graph, const Eigen::VectorXi& labels);
+
 /// #F face labels: the label that at least two corners share, else the first corner's.
 Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels);
 

@@ -23,6 +23,10 @@ struct SegmentationOptions {
   LaplacianKind laplacian = LaplacianKind::normalized;
   EigenOptions eigen;
   KMeansOptions kmeans;
+  /// Besides k-means with k clusters, k + 1 … k + over_segmentation clusters merged back to k by
+  /// structure are tried; the partition with the most limb (leaf) parts, then the lowest normalised
+  /// cut wins. 0 = classic spectral clustering only.
+  int over_segmentation = 2;
   bool cleanup = true;         ///< one connected patch per part, then boundary smoothing
   int smoothing_iterations = 4;  ///< boundary smoothing sweeps
   /// Up and forward (facing) directions of the character; a zero vector = estimate from the mesh
@@ -48,8 +52,10 @@ struct NamedPart {
   double area = 0.0;  ///< [m²]
 };
 
-struct SegmentationTimings {  ///< wall-clock seconds per phase
-  double graph = 0, eigen = 0, kmeans = 0, cleanup = 0, naming = 0, total = 0;
+/// Wall-clock seconds per phase: graph and affinities; eigenpairs and the number of parts; k-means,
+/// clean-up and merging of every candidate; axes and names; all of it.
+struct SegmentationTimings {
+  double graph = 0, eigen = 0, clustering = 0, naming = 0, total = 0;
 };
 
 struct SegmentationResult {
@@ -65,8 +71,10 @@ struct SegmentationResult {
   double eigengap = 0.0;     ///< λ_K / λ_{K−1} of the union spectrum at the chosen K (0 if undefined)
   double eigen_residual = 0.0;  ///< max ‖L x − λ x‖ over every eigenpair computed
   int eigen_iterations = 0;     ///< total Lanczos restarts
-  double kmeans_cost = 0.0;
-  int relabelled_vertices = 0;  ///< vertices changed by the clean-up
+  double kmeans_cost = 0.0;       ///< of the winning embedding (last component with ≥ 2 parts)
+  int clusters_before_merge = 0;  ///< k-means clusters of the winning candidate (same component)
+  double normalized_cut = 0.0;   ///< Σ over parts of cut / volume, summed over the components
+  int relabelled_vertices = 0;  ///< vertices changed by the clean-up (candidates without merging)
   AxesEstimate axes;
   SegmentationTimings seconds;
 
