@@ -104,3 +104,75 @@ TEST_P(GarmentCodeBody, MeanIouAndNames) {
   }
 }
 INSTANTIATE_TEST_SUITE_P(Segmentation, GarmentCodeBody, ::testing::Values("gc_mean_all", "gc_mean_all_tpose"));
+
+namespace {
+
+struct OutfitCase {
+  std::string key;
+  double top_min, bottom_min;  // thresholds on mean IoU; the goal is 0.80 (see docs/segmentation.md)
+};
+
+class MakeHumanOutfit : public ::testing::TestWithParam<OutfitCase> {};
+
+// The truth restricted to one garment: a top's parts are torso and arms (sleeves), a bottom's torso
+// and legs; the few labels of the other kind on it (a top's hem bound to a thigh) count as torso.
+test::GroundTruth garment_truth(const test::GroundTruth& outfit, const Eigen::VectorXi& in_garment, bool& is_top) {
+  int arms = 0, legs = 0;
+  for (int i = 0; i < outfit.labels.size(); ++i) {
+    if (!in_garment(i) || outfit.labels(i) < 0) continue;
+    const std::string& name = outfit.names[outfit.labels(i)];
+    arms += name.rfind("arm", 0) == 0;
+    legs += name.rfind("leg", 0) == 0;
+  }
+  is_top = arms > legs;
+  test::GroundTruth g = outfit;
+  for (int i = 0; i < g.labels.size(); ++i) {
+    if (!in_garment(i)) {
+      g.labels(i) = -1;
+      continue;
+    }
+    const std::string& name = g.names[g.labels(i)];
+    if (name.rfind(is_top ? "leg" : "arm", 0) == 0) g.labels(i) = 0;  // torso
+  }
+  return g;
+}
+
+}  // namespace
+
+// An outfit is two components (a top and a bottom) in one file; the number of parts is chosen by the
+// eigengap, and each garment is compared with its own labels.
+TEST_P(MakeHumanOutfit, TopAndBottomMeanIou) {
+  DRESSKIT_REQUIRE_DATA();
+  const OutfitCase& param = GetParam();
+  const std::string dir = test::data_dir();
+  LoadOptions load;
+  load.units = Units::parse("dm");
+  const TriangleMesh mesh = load_mesh(dir + "/garments/mh_" + param.key + ".obj", load);
+  const test::GroundTruth truth = test::mh_outfit_truth(dir, param.key);
+  ASSERT_EQ(truth.labels.size(), mesh.num_vertices());
+  SegmentationOptions o;
+  o.up = Eigen::Vector3d::UnitY();
+  o.forward = Eigen::Vector3d::UnitZ();
+  const SegmentationResult r = segment_mesh(mesh, o);
+  ASSERT_EQ(r.components, 2);
+  for (int c = 0; c < 2; ++c) {
+    Eigen::VectorXi in_garment = Eigen::VectorXi::Zero(mesh.num_vertices());
+    for (int i = 0; i < mesh.num_vertices(); ++i)
+      in_garment(i) = r.vertex_labels(i) >= 0 && r.parts[r.vertex_labels(i)].component == c;
+    bool is_top = false;
+    const test::GroundTruth g = garment_truth(truth, in_garment, is_top);
+    std::string names;
+    for (const auto& p : r.parts)
+      if (p.component == c) names += " " + p.name;
+    const LabelComparison cmp =
+        report(param.key + (is_top ? " top:" : " bottom:") + names, r.vertex_labels, g, r);
+    EXPECT_GE(cmp.mean_iou, is_top ? param.top_min : param.bottom_min) << (is_top ? "top" : "bottom");
+  }
+}
+INSTANTIATE_TEST_SUITE_P(Segmentation, MakeHumanOutfit,
+                         // Goal 0.80. Where it is not met, the threshold is what the method reaches
+                         // today (docs/segmentation.md, "Not met"), so that a regression still fails.
+                         ::testing::Values(OutfitCase{"female_casualsuit01", 0.72, 0.72},
+                                           OutfitCase{"female_elegantsuit01", 0.28, 0.14},
+                                           OutfitCase{"male_casualsuit02", 0.80, 0.68}),
+                         [](const auto& info) { return info.param.key; });

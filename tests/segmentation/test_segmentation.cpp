@@ -200,6 +200,9 @@ TEST(SegmentationScene, MannequinPartsAndNames) {
 }
 
 TEST(SegmentationScene, GarmentsPartsAndNames) {
+  // Mean IoU reached today with the number of parts chosen by the eigengap (goal 0.80, not met for
+  // the skirt and trousers: docs/segmentation.md); a regression fails.
+  const double reached[] = {0.70, 0.65, 0.53};  // t-shirt, skirt, trousers
   const auto& scene = test::DefaultScene::get();
   for (size_t g = 0; g < all_garment_kinds().size(); ++g) {
     const TriangleMesh& garment = scene.garments[g];
@@ -209,6 +212,7 @@ TEST(SegmentationScene, GarmentsPartsAndNames) {
                 r.parts_chosen, c.mean_iou, 1 - c.rand_index);
     for (const auto& p : r.parts) std::printf(" %s", p.name.c_str());
     std::printf("\n");
+    EXPECT_GE(c.mean_iou, reached[g]) << to_string(all_garment_kinds()[g]);
   }
 }
 
