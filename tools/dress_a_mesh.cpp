@@ -16,6 +16,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
+#include "segment_command.h"
 #include "thickness_command.h"
 
 namespace fs = std::filesystem;
@@ -430,6 +431,8 @@ int main(int argc, char** argv) {
 
   cli::ThicknessCommand thickness;
   thickness.add_to(app);
+  cli::SegmentCommand segment;
+  segment.add_to(app);
 
   try {
     app.parse(argc, argv);
@@ -449,6 +452,7 @@ int main(int argc, char** argv) {
     if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
     if (*simulate) return run_simulate(scene_path, simulate_dir, simulate_frames);
     if (*thickness.command) return thickness.run();
+    if (*segment.command) return segment.run();
     if (*demo) {
       body_options.pose = parse_pose(pose);
       garment_options.edge_length = body_options.edge_length;

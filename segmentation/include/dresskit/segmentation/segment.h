@@ -1,0 +1,89 @@
+#pragma once
+// Spectral segmentation of body and garment meshes into named parts (docs/segmentation.md).
+// One-off use: segment_mesh(mesh, options). Units: metres; the mesh's axes as loaded (+Y up unless
+// the options say otherwise or ask for an estimate).
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "dresskit/mesh/triangle_mesh.h"
+#include "dresskit/segmentation/graph.h"
+#include "dresskit/segmentation/kmeans.h"
+#include "dresskit/segmentation/spectral.h"
+
+namespace dresskit {
+
+struct SegmentationOptions {
+  /// Total number of parts over all connected components; 0 = chosen by the largest eigengap of the
+  /// union of the components' spectra, between #components + 1 and max_parts.
+  int parts = 0;
+  int max_parts = 8;  ///< upper bound of the automatic choice
+  AffinityOptions affinity;
+  LaplacianKind laplacian = LaplacianKind::normalized;
+  EigenOptions eigen;
+  KMeansOptions kmeans;
+  /// Besides k-means with k clusters, k + 1 … k + over_segmentation clusters merged back to k by
+  /// structure are tried; the partition with the most limb (leaf) parts, then the lowest normalised
+  /// cut wins. 0 = classic spectral clustering only.
+  int over_segmentation = 2;
+  bool cleanup = true;         ///< one connected patch per part, then boundary smoothing
+  int smoothing_iterations = 4;  ///< boundary smoothing sweeps
+  /// Up and forward (facing) directions of the character; a zero vector = estimate from the mesh
+  /// (up: area-weighted PCA; forward: the feet, else the PCA axis of least spread, sign +Z).
+  Eigen::Vector3d up = Eigen::Vector3d::Zero();
+  Eigen::Vector3d forward = Eigen::Vector3d::Zero();
+};
+
+/// Up/forward/left axes used for naming; left = up × forward is the character's left.
+struct AxesEstimate {
+  Eigen::Vector3d up = Eigen::Vector3d::UnitY(), forward = Eigen::Vector3d::UnitZ(),
+                  left = Eigen::Vector3d::UnitX();
+  bool up_given = false, forward_given = false;
+  /// How the forward sign was decided: "given", "feet" or "default +Z"; same for up ("given", "pca").
+  std::string up_source, forward_source;
+};
+
+struct NamedPart {
+  std::string name;         ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt, part_N
+  double confidence = 0.0;  ///< 0–1: how clearly the geometry supports the name
+  int component = 0;        ///< connected component the part lies in
+  int vertices = 0;
+  double area = 0.0;  ///< [m²]
+};
+
+/// Wall-clock seconds per phase: graph and affinities; eigenpairs and the number of parts; k-means,
+/// clean-up and merging of every candidate; axes and names; all of it.
+struct SegmentationTimings {
+  double graph = 0, eigen = 0, clustering = 0, naming = 0, total = 0;
+};
+
+struct SegmentationResult {
+  Eigen::VectorXi vertex_labels;  ///< #V part index per vertex, −1 for vertices without a face
+  Eigen::VectorXi face_labels;    ///< #F part index per face
+  std::vector<NamedPart> parts;   ///< index = label
+  int parts_chosen = 0;
+  bool parts_automatic = false;
+  int components = 0;                   ///< connected components with faces
+  std::vector<int> parts_per_component;
+  int isolated_vertices = 0;            ///< vertices without a face (label −1)
+  Eigen::VectorXd spectrum;  ///< sorted union of the components' smallest eigenvalues
+  double eigengap = 0.0;     ///< λ_K / λ_{K−1} of the union spectrum at the chosen K (0 if undefined)
+  double eigen_residual = 0.0;  ///< max ‖L x − λ x‖ over every eigenpair computed
+  int eigen_iterations = 0;     ///< total Lanczos restarts
+  double kmeans_cost = 0.0;       ///< of the winning embedding (last component with ≥ 2 parts)
+  int clusters_before_merge = 0;  ///< k-means clusters of the winning candidate (same component)
+  double normalized_cut = 0.0;   ///< Σ over parts of cut / volume, summed over the components
+  int relabelled_vertices = 0;  ///< vertices changed by the clean-up (candidates without merging)
+  AxesEstimate axes;
+  SegmentationTimings seconds;
+
+  std::vector<std::string> part_names() const;
+};
+
+/// Segments the mesh. Throws InputError for an unusable mesh or option (no faces, parts < 0, more
+/// parts than vertices, fewer parts than components) and EigenSolverError when the eigen-solver does
+/// not converge (the message says what was tried).
+SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& options = {});
+
+}  // namespace dresskit

@@ -1,0 +1,213 @@
+#include "dresskit/segmentation/cleanup.h"
+
+#include <algorithm>
+#include <map>
+
+namespace dresskit {
+
+int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adj,
+                         const Eigen::VectorXd& vertex_area, Eigen::VectorXi& labels) {
+  const int n = graph.num_vertices;
+  int relabelled = 0;
+  // Each round finds the patches (connected runs of one label), keeps the largest of each label and
+  // hands every other patch that touches a kept patch to the kept label it shares most affinity with.
+  // Rounds repeat for orphans enclosed by other orphans; an orphan with no labelled neighbour stays.
+  for (int round = 0; round < 64; ++round) {
+    std::vector<int> patch(n, -1);
+    std::vector<int> patch_label;
+    std::vector<double> patch_area;
+    std::vector<int> stack;
+    for (int s = 0; s < n; ++s) {
+      if (patch[s] >= 0 || labels(s) < 0) continue;
+      const int id = static_cast<int>(patch_label.size());
+      patch_label.push_back(labels(s));
+      patch_area.push_back(0.0);
+      patch[s] = id;
+      stack.assign(1, s);
+      while (!stack.empty()) {
+        const int v = stack.back();
+        stack.pop_back();
+        patch_area[id] += vertex_area(v);
+        for (int k = adj.start[v]; k < adj.start[v + 1]; ++k) {
+          const int w = adj.adj[k];
+          if (patch[w] < 0 && labels(w) == labels(v)) {
+            patch[w] = id;
+            stack.push_back(w);
+          }
+        }
+      }
+    }
+    std::map<int, int> largest;  // label → its largest patch
+    for (int p = 0; p < static_cast<int>(patch_label.size()); ++p) {
+      auto it = largest.find(patch_label[p]);
+      if (it == largest.end() || patch_area[p] > patch_area[it->second]) largest[patch_label[p]] = p;
+    }
+    // Affinity from each orphan patch to each neighbouring kept patch. Orphans move into kept patches
+    // only (never into another orphan), so kept patches only grow and the rounds end.
+    std::vector<std::map<int, double>> toward(patch_label.size());
+    auto kept = [&](int p) { return largest[patch_label[p]] == p; };
+    for (int e = 0; e < graph.num_edges(); ++e) {
+      const int a = patch[graph.from(e)], b = patch[graph.to(e)];
+      if (a < 0 || b < 0 || a == b) continue;
+      if (kept(b) && !kept(a)) toward[a][patch_label[b]] += graph.affinity(e);
+      if (kept(a) && !kept(b)) toward[b][patch_label[a]] += graph.affinity(e);
+    }
+    std::vector<int> target(patch_label.size(), -1);
+    bool any = false;
+    for (int p = 0; p < static_cast<int>(patch_label.size()); ++p) {
+      if (kept(p) || toward[p].empty()) continue;
+      target[p] = std::max_element(toward[p].begin(), toward[p].end(), [](const auto& x, const auto& y) {
+                    return x.second < y.second;
+                  })->first;
+      any = true;
+    }
+    if (!any) break;
+    for (int v = 0; v < n; ++v)
+      if (patch[v] >= 0 && target[patch[v]] >= 0) {
+        labels(v) = target[patch[v]];
+        ++relabelled;
+      }
+  }
+  return relabelled;
+}
+
+int smooth_label_boundaries(const MeshGraph& graph, const Adjacency& adj, int iterations,
+                            Eigen::VectorXi& labels) {
+  const int n = graph.num_vertices;
+  int changes = 0;
+  std::map<int, double> vote;
+  for (int it = 0; it < iterations; ++it) {
+    Eigen::VectorXi next = labels;
+    int changed = 0;
+    for (int v = 0; v < n; ++v) {
+      if (labels(v) < 0 || adj.start[v] == adj.start[v + 1]) continue;
+      bool boundary = false;
+      for (int k = adj.start[v]; k < adj.start[v + 1] && !boundary; ++k)
+        boundary = labels(adj.adj[k]) != labels(v);
+      if (!boundary) continue;
+      vote.clear();
+      double self = 0.0;
+      for (int k = adj.start[v]; k < adj.start[v + 1]; ++k) {
+        const double w = graph.affinity(adj.edge[k]);
+        self += w;
+        if (labels(adj.adj[k]) >= 0) vote[labels(adj.adj[k])] += w;
+      }
+      vote[labels(v)] += self / (adj.start[v + 1] - adj.start[v]);
+      const int best = std::max_element(vote.begin(), vote.end(), [](const auto& x, const auto& y) {
+                         return x.second < y.second;
+                       })->first;
+      if (best != labels(v)) {
+        next(v) = best;
+        ++changed;
+      }
+    }
+    labels = next;
+    changes += changed;
+    if (!changed) break;
+  }
+  return changes;
+}
+
+namespace {
+
+// Shared affinity between parts (symmetric, zero diagonal) and each part's volume (total degree).
+void part_graph(const MeshGraph& graph, const Eigen::VectorXi& labels, int q, Eigen::MatrixXd& cut,
+                Eigen::VectorXd& volume) {
+  cut = Eigen::MatrixXd::Zero(q, q);
+  volume = Eigen::VectorXd::Zero(q);
+  for (int e = 0; e < graph.num_edges(); ++e) {
+    const int a = labels(graph.from(e)), b = labels(graph.to(e));
+    if (a < 0 || b < 0) continue;
+    volume(a) += graph.affinity(e);
+    volume(b) += graph.affinity(e);
+    if (a != b) cut(a, b) += graph.affinity(e), cut(b, a) += graph.affinity(e);
+  }
+}
+
+int leaves(const Eigen::MatrixXd& cut, const std::vector<bool>& alive) {
+  int count = 0;
+  for (int a = 0; a < cut.rows(); ++a) {
+    if (!alive[a]) continue;
+    int neighbours = 0;
+    for (int b = 0; b < cut.rows(); ++b) neighbours += alive[b] && b != a && cut(a, b) > 0;
+    count += neighbours == 1;
+  }
+  return count;
+}
+
+double ncut(const Eigen::MatrixXd& cut, const Eigen::VectorXd& volume, const std::vector<bool>& alive) {
+  double sum = 0;
+  for (int a = 0; a < cut.rows(); ++a)
+    if (alive[a] && volume(a) > 0) sum += cut.row(a).sum() / volume(a);
+  return sum;
+}
+
+}  // namespace
+
+int count_leaf_parts(const MeshGraph& graph, const Eigen::VectorXi& labels) {
+  const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
+  if (q <= 0) return 0;
+  Eigen::MatrixXd cut;
+  Eigen::VectorXd volume;
+  part_graph(graph, labels, q, cut, volume);
+  return leaves(cut, std::vector<bool>(q, true));
+}
+
+int merge_parts_towards_star(const MeshGraph& graph, int target, Eigen::VectorXi& labels) {
+  const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
+  Eigen::MatrixXd cut;
+  Eigen::VectorXd volume;
+  part_graph(graph, labels, q, cut, volume);
+  std::vector<bool> alive(q, true);
+  std::vector<int> into(q);
+  for (int a = 0; a < q; ++a) into[a] = a;
+  for (int count = q; count > target; --count) {
+    int best_a = -1, best_b = -1, best_leaves = -1;
+    double best_ncut = 0;
+    for (int a = 0; a < q; ++a)
+      for (int b = a + 1; b < q; ++b) {
+        if (!alive[a] || !alive[b] || cut(a, b) <= 0) continue;
+        Eigen::MatrixXd c = cut;
+        Eigen::VectorXd v = volume;
+        std::vector<bool> live = alive;
+        c.row(a) += c.row(b);
+        c.col(a) += c.col(b);
+        c(a, a) = 0;
+        c.row(b).setZero();
+        c.col(b).setZero();
+        v(a) += v(b);
+        live[b] = false;
+        const int l = leaves(c, live);
+        const double n = ncut(c, v, live);
+        if (l > best_leaves || (l == best_leaves && n < best_ncut)) best_a = a, best_b = b, best_leaves = l, best_ncut = n;
+      }
+    if (best_a < 0) break;  // no adjacent parts left (should not happen within one component)
+    cut.row(best_a) += cut.row(best_b);
+    cut.col(best_a) += cut.col(best_b);
+    cut(best_a, best_a) = 0;
+    cut.row(best_b).setZero();
+    cut.col(best_b).setZero();
+    volume(best_a) += volume(best_b);
+    alive[best_b] = false;
+    for (int& x : into)
+      if (x == best_b) x = best_a;
+  }
+  std::vector<int> compact(q, -1);
+  int next = 0;
+  for (int a = 0; a < q; ++a)
+    if (alive[a]) compact[a] = next++;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) labels(i) = compact[into[labels(i)]];
+  return leaves(cut, alive);
+}
+
+Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels) {
+  Eigen::VectorXi out(F.rows());
+  for (int f = 0; f < F.rows(); ++f) {
+    const int a = labels(F(f, 0)), b = labels(F(f, 1)), c = labels(F(f, 2));
+    out(f) = (b == c && b != a) ? b : a;
+  }
+  return out;
+}
+
+}  // namespace dresskit

@@ -1,0 +1,258 @@
+// The stateful part of segmentation: phases in order (graph, eigenpairs per component, number of
+// parts, k-means, clean-up, naming), each a pure kernel from the other files.
+#include "dresskit/segmentation/segment.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+
+#include "dresskit/mesh/errors.h"
+#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/naming.h"
+
+namespace dresskit {
+
+std::vector<std::string> SegmentationResult::part_names() const {
+  std::vector<std::string> names;
+  for (const auto& p : parts) names.push_back(p.name);
+  return names;
+}
+
+namespace {
+
+// Rows of eigenvectors 1..dims, each scaled by 1/√λ (low frequencies weigh more), put on the unit
+// sphere (Ng, Jordan & Weiss) so that k-means sees directions from the hub, not distances.
+Eigen::MatrixXd spectral_embedding(const EigenResult& eigen, int dims) {
+  Eigen::MatrixXd Y = eigen.vectors.middleCols(1, dims);
+  for (int k = 0; k < dims; ++k) Y.col(k) /= std::sqrt(std::max(eigen.values(k + 1), 1e-300));
+  for (int i = 0; i < Y.rows(); ++i) {
+    const double norm = Y.row(i).norm();
+    if (norm > 0) Y.row(i) /= norm;
+  }
+  return Y;
+}
+
+void clean_up(const MeshGraph& graph, const Adjacency& adj, const Eigen::VectorXd& area, int smoothing,
+              Eigen::VectorXi& labels) {
+  merge_orphan_patches(graph, adj, area, labels);
+  smooth_label_boundaries(graph, adj, smoothing, labels);
+  merge_orphan_patches(graph, adj, area, labels);
+}
+
+// Renumbers the labels ≥ 0 to 0..m−1 in order of their value (a cluster may have vanished).
+void compact_labels(Eigen::VectorXi& labels) {
+  std::map<int, int> index;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) index.emplace(labels(i), 0);
+  int next = 0;
+  for (auto& [label, k] : index) k = next++;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) labels(i) = index[labels(i)];
+}
+
+using Clock = std::chrono::steady_clock;
+double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+struct Component {
+  std::vector<int> vertices;  // mesh vertex indices
+  EigenResult eigen;
+  int parts = 0;
+};
+
+// The affinity matrix restricted to one component's vertices.
+Eigen::SparseMatrix<double> sub_affinity(const MeshGraph& g, const std::vector<int>& local,
+                                         const Eigen::VectorXi& component, int c, int n) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int e = 0; e < g.num_edges(); ++e) {
+    if (component(g.from(e)) != c) continue;
+    const int i = local[g.from(e)], j = local[g.to(e)];
+    t.emplace_back(i, j, g.affinity(e));
+    t.emplace_back(j, i, g.affinity(e));
+  }
+  Eigen::SparseMatrix<double> W(n, n);
+  W.setFromTriplets(t.begin(), t.end());
+  return W;
+}
+
+// Number of parts per component from the union of the spectra: every component takes its zero
+// eigenvalue, the other K − C parts go to the smallest remaining eigenvalues. Automatic K: the
+// largest ratio λ_K / λ_{K−1} of the sorted union.
+int choose_parts(std::vector<Component>& comps, const SegmentationOptions& o, SegmentationResult& r) {
+  const int C = static_cast<int>(comps.size());
+  struct Entry {
+    double value;
+    int comp, index;
+  };
+  std::vector<Entry> rest;
+  std::vector<double> all;
+  for (int c = 0; c < C; ++c) {
+    comps[c].parts = 1;
+    for (int k = 0; k < comps[c].eigen.values.size(); ++k) {
+      all.push_back(k == 0 ? 0.0 : comps[c].eigen.values(k));
+      if (k > 0) rest.push_back({comps[c].eigen.values(k), c, k});
+    }
+  }
+  std::sort(all.begin(), all.end());
+  std::sort(rest.begin(), rest.end(), [](const Entry& a, const Entry& b) {
+    return a.value != b.value ? a.value < b.value : a.comp != b.comp ? a.comp < b.comp : a.index < b.index;
+  });
+  r.spectrum = Eigen::Map<Eigen::VectorXd>(all.data(), static_cast<Eigen::Index>(all.size()));
+  const int total = static_cast<int>(all.size());
+  auto gap = [&](int K) { return K < total && all[K - 1] > 0 ? all[K] / all[K - 1] : 0.0; };
+  int K = o.parts;
+  if (K == 0) {
+    K = C;
+    double best = 0;
+    for (int k = C + 1; k <= std::min(std::max(o.max_parts, C), total - 1); ++k)
+      if (gap(k) > best) best = gap(k), K = k;
+  }
+  K = std::min(K, total);
+  r.eigengap = gap(K);
+  for (int k = 0; k < K - C; ++k) ++comps[rest[k].comp].parts;
+  return K;
+}
+
+}  // namespace
+
+SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& o) {
+  const auto start = Clock::now();
+  validate_mesh(mesh, "mesh");
+  if (o.parts < 0)
+    throw InputError("parts: " + std::to_string(o.parts) + " (must be at least 1, or 0 for automatic)");
+  if (o.max_parts < 1) throw InputError("max_parts: " + std::to_string(o.max_parts) + " (must be at least 1)");
+  SegmentationResult r;
+  r.parts_automatic = o.parts == 0;
+  const int n = mesh.num_vertices();
+
+  auto t = Clock::now();
+  const MeshGraph graph = build_mesh_graph(mesh.V, mesh.F, o.affinity);
+  const Eigen::VectorXd area = vertex_areas(mesh.V, mesh.F);
+  Eigen::VectorXi component;
+  const int raw_components = connected_components(graph, component);
+  std::vector<bool> used(n, false);
+  for (int f = 0; f < mesh.num_faces(); ++f)
+    for (int c = 0; c < 3; ++c) used[mesh.F(f, c)] = true;
+  // Components with faces, renumbered; isolated vertices get −1 (documented fallback).
+  std::vector<int> renumber(raw_components, -1);
+  std::vector<Component> comps;
+  std::vector<int> local(n, -1);
+  for (int v = 0; v < n; ++v) {
+    if (!used[v]) {
+      ++r.isolated_vertices;
+      component(v) = -1;
+      continue;
+    }
+    int& c = renumber[component(v)];
+    if (c < 0) c = static_cast<int>(comps.size()), comps.emplace_back();
+    component(v) = c;
+    local[v] = static_cast<int>(comps[c].vertices.size());
+    comps[c].vertices.push_back(v);
+  }
+  const int C = static_cast<int>(comps.size());
+  const int usable = n - r.isolated_vertices;
+  r.components = C;
+  if (o.parts > usable)
+    throw InputError("parts: " + std::to_string(o.parts) + " is more than the " + std::to_string(usable) +
+                     " vertices of the mesh");
+  if (o.parts > 0 && o.parts < C)
+    throw InputError("parts: " + std::to_string(o.parts) + " is fewer than the " + std::to_string(C) +
+                     " connected components (each needs at least one part)");
+  r.seconds.graph = since(t);
+
+  t = Clock::now();
+  const int k_max = o.parts > 0 ? o.parts : std::max(o.max_parts, C);
+  for (int c = 0; c < C; ++c) {
+    const int nc = static_cast<int>(comps[c].vertices.size());
+    // One more than the most parts it can get (for the gap) and the over-segmentation.
+    const int nev = std::min(nc, k_max - C + 2 + std::max(0, o.over_segmentation));
+    const Eigen::SparseMatrix<double> L =
+        graph_laplacian(sub_affinity(graph, local, component, c, nc), o.laplacian);
+    comps[c].eigen = smallest_eigenpairs(L, nev, o.eigen);
+    r.eigen_residual = std::max(r.eigen_residual, comps[c].eigen.residual);
+    r.eigen_iterations += comps[c].eigen.iterations;
+  }
+  r.parts_chosen = choose_parts(comps, o, r);
+  r.seconds.eigen = since(t);
+
+  t = Clock::now();
+  Eigen::VectorXi labels = Eigen::VectorXi::Constant(n, -1);
+  std::vector<int> label_component;
+  const Adjacency adj = adjacency(graph);
+  for (int c = 0; c < C; ++c) {
+    const Component& comp = comps[c];
+    const int base = static_cast<int>(label_component.size());
+    r.parts_per_component.push_back(comp.parts);
+    for (int p = 0; p < comp.parts; ++p) label_component.push_back(c);
+    if (comp.parts == 1) {
+      for (int v : comp.vertices) labels(v) = base;
+      continue;
+    }
+    // Candidates: k-means with k, k + 1, …, k + over_segmentation clusters, each cleaned up and merged
+    // back to k parts by structure (merge_parts_towards_star), until one is a star. A candidate
+    // replaces the previous best only with more leaf parts (limbs hanging off a hub): plain k-means
+    // wins ties. (The normalised
+    // cut is no tie-breaker: on the bodies it prefers partitions that are worse against the truth.)
+    double best_ncut = 0.0;
+    int best_leaves = -1;
+    Eigen::VectorXi best;
+    int relabelled = 0;
+    for (int q = comp.parts; q <= comp.parts + std::max(0, o.over_segmentation); ++q) {
+      if (q > static_cast<int>(comp.vertices.size()) || q > comp.eigen.values.size()) break;
+      const KMeansResult km = kmeans(spectral_embedding(comp.eigen, q - 1), q, o.kmeans);
+      Eigen::VectorXi own = Eigen::VectorXi::Constant(n, -1);
+      for (size_t i = 0; i < comp.vertices.size(); ++i) own(comp.vertices[i]) = km.labels(i);
+      const Eigen::VectorXi raw = own;
+      if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, own);
+      compact_labels(own);
+      if (own.maxCoeff() + 1 > comp.parts) {
+        merge_parts_towards_star(graph, comp.parts, own);
+        if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, own);
+        compact_labels(own);
+      }
+      const int leaf_parts = count_leaf_parts(graph, own);
+      const double ncut = normalized_cut(graph, own);
+      if (leaf_parts > best_leaves) {
+        best_leaves = leaf_parts;
+        best_ncut = ncut;
+        best = own;
+        r.kmeans_cost = km.cost;
+        r.clusters_before_merge = q;
+        relabelled = q == comp.parts ? static_cast<int>((own.array() != raw.array()).count()) : -1;
+      }
+      // A star (one hub, every other part a leaf) is as good as structure gets: stop there.
+      if (best_leaves >= (comp.parts == 2 ? 2 : comp.parts - 1)) break;
+    }
+    for (int v : comp.vertices) labels(v) = best(v) >= 0 ? base + best(v) : -1;
+    r.normalized_cut += best_ncut;
+    if (relabelled >= 0) r.relabelled_vertices += relabelled;
+  }
+    // Compact the labels (a k-means cluster or a patch may have vanished), keeping their order.
+  std::vector<int> compact(label_component.size(), -1);
+  std::vector<int> kept_component;
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0 && compact[labels(v)] < 0) compact[labels(v)] = 0;
+  for (size_t l = 0; l < compact.size(); ++l)
+    if (compact[l] == 0) compact[l] = static_cast<int>(kept_component.size()), kept_component.push_back(label_component[l]);
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0) labels(v) = compact[labels(v)];
+  r.parts_per_component.assign(C, 0);
+  for (int c : kept_component) ++r.parts_per_component[c];
+  r.seconds.clustering = since(t);
+
+  t = Clock::now();
+  r.axes = estimate_axes(mesh.V, area, o.up, o.forward);
+  r.parts = name_parts(mesh.V, graph, area, labels, kept_component, r.axes);
+  std::map<std::string, int> seen;  // names are unique in a mesh: body, body_2, …
+  for (auto& p : r.parts)
+    if (++seen[p.name] > 1) p.name += "_" + std::to_string(seen[p.name]);
+  r.seconds.naming = since(t);
+
+  r.vertex_labels = labels;
+  r.face_labels = face_labels_from_vertices(mesh.F, labels);
+  r.seconds.total = since(start);
+  return r;
+}
+
+}  // namespace dresskit

@@ -1,0 +1,269 @@
+// Segmentation kernels against closed forms and hand-made cases, the procedural mannequin and
+// garments with their true labels, several components, and bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "../mesh/mesh_fixtures.h"
+#include "../scene/scene_fixture.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/graph.h"
+#include "dresskit/segmentation/kmeans.h"
+#include "dresskit/segmentation/metrics.h"
+#include "dresskit/segmentation/segment.h"
+#include "dresskit/segmentation/spectral.h"
+
+using namespace dresskit;
+
+namespace {
+
+// A path graph 0 – 1 – … – n−1 with unit affinities.
+Eigen::SparseMatrix<double> path_affinity(int n) {
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i + 1 < n; ++i) t.emplace_back(i, i + 1, 1.0), t.emplace_back(i + 1, i, 1.0);
+  Eigen::SparseMatrix<double> W(n, n);
+  W.setFromTriplets(t.begin(), t.end());
+  return W;
+}
+
+// A strip of 2·n triangles along x (faces looking at +Z) whose height z(x) is given per column.
+template <class Height>
+TriangleMesh strip(int n, Height z) {
+  TriangleMesh m;
+  m.V.resize(2 * (n + 1), 3);
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j < 2; ++j) m.V.row(2 * i + j) << i - n / 2.0, j, z(i - n / 2.0);
+  m.F.resize(2 * n, 3);
+  for (int i = 0; i < n; ++i) {
+    m.F.row(2 * i) << 2 * i, 2 * i + 2, 2 * i + 1;
+    m.F.row(2 * i + 1) << 2 * i + 1, 2 * i + 2, 2 * i + 3;
+  }
+  return m;
+}
+
+TriangleMesh flat_strip(int n) {
+  return strip(n, [](double) { return 0.0; });
+}
+
+// Mesh with the vertices and faces of a and b side by side (b shifted by `offset`).
+TriangleMesh side_by_side(const TriangleMesh& a, const TriangleMesh& b, const Eigen::Vector3d& offset) {
+  TriangleMesh m;
+  m.V.resize(a.V.rows() + b.V.rows(), 3);
+  m.V << a.V, b.V.rowwise() + offset.transpose();
+  m.F.resize(a.F.rows() + b.F.rows(), 3);
+  m.F << a.F, (b.F.array() + static_cast<int>(a.V.rows())).matrix();
+  return m;
+}
+
+}  // namespace
+
+TEST(SegmentationGraph, EdgesAffinitiesAndComponents) {
+  const TriangleMesh cube = fixtures::cube(1.0);
+  const MeshGraph g = build_mesh_graph(cube.V, cube.F);
+  EXPECT_EQ(g.num_edges(), 18);  // 12 cube edges + 6 face diagonals
+  EXPECT_GT(g.affinity.minCoeff(), 0.0);
+  EXPECT_LE(g.affinity.maxCoeff(), 1.0);
+  Eigen::VectorXi comp;
+  EXPECT_EQ(connected_components(g, comp), 1);
+  EXPECT_NEAR(vertex_areas(cube.V, cube.F).sum(), 6.0, 1e-12);
+
+  const TriangleMesh two = side_by_side(cube, cube, Eigen::Vector3d(5, 0, 0));
+  EXPECT_EQ(connected_components(build_mesh_graph(two.V, two.F), comp), 2);
+}
+
+TEST(SegmentationGraph, ConcaveFoldWeighsLessThanConvexFold) {
+  // A valley at x = −2 (the surface bends towards its normals: concave) and a ridge of the same angle
+  // at x = 2 (convex): the valley's edge has the lower affinity, and both are below a flat edge.
+  const TriangleMesh m = strip(12, [](double x) { return std::clamp(x + 2.0, 0.0, 4.0); });
+  const MeshGraph g = build_mesh_graph(m.V, m.F);
+  auto along = [&](double x) {
+    for (int e = 0; e < g.num_edges(); ++e)
+      if (m.V(g.from(e), 0) == x && m.V(g.to(e), 0) == x) return g.affinity(e);
+    return -1.0;
+  };
+  EXPECT_LT(along(-2), along(2));
+  EXPECT_LT(along(2), along(-4));
+  EXPECT_LT(along(-2), 0.5 * along(-4));
+}
+
+TEST(SegmentationSpectral, PathGraphMatchesClosedForm) {
+  // Plain Laplacian of a path with n vertices: λ_k = 2 − 2 cos(π k / n).
+  const int n = 400;
+  const Eigen::SparseMatrix<double> L = graph_laplacian(path_affinity(n), LaplacianKind::plain);
+  const EigenResult r = smallest_eigenpairs(L, 6);
+  EXPECT_EQ(r.method, "spectra shift-invert");
+  for (int k = 0; k < 6; ++k) EXPECT_NEAR(r.values(k), 2 - 2 * std::cos(M_PI * k / n), 1e-10) << k;
+  EXPECT_LT(r.residual, 1e-8);
+  // The dense solver agrees.
+  EigenOptions dense;
+  dense.dense_below = n + 1;
+  const EigenResult d = smallest_eigenpairs(L, 6, dense);
+  EXPECT_EQ(d.method, "dense");
+  EXPECT_LT((d.values - r.values).cwiseAbs().maxCoeff(), 1e-10);
+}
+
+TEST(SegmentationSpectral, NormalizedLaplacianHasUnitDiagonalAndZeroMode) {
+  const Eigen::SparseMatrix<double> L = graph_laplacian(path_affinity(300), LaplacianKind::normalized);
+  EXPECT_NEAR(L.diagonal().minCoeff(), 1.0, 1e-15);
+  const EigenResult r = smallest_eigenpairs(L, 3);
+  EXPECT_NEAR(r.values(0), 0.0, 1e-10);
+  EXPECT_LT(r.residual, 1e-8);
+}
+
+TEST(SegmentationSpectral, NonConvergenceSaysWhatWasTried) {
+  const Eigen::SparseMatrix<double> L = graph_laplacian(path_affinity(500), LaplacianKind::plain);
+  EigenOptions o;
+  o.tolerance = 0.0;  // never met
+  o.max_iterations = 1;
+  try {
+    smallest_eigenpairs(L, 5, o);
+    FAIL() << "expected EigenSolverError";
+  } catch (const EigenSolverError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("did not converge"), std::string::npos) << what;
+    EXPECT_NE(what.find("ncv 20"), std::string::npos) << what;
+    EXPECT_NE(what.find("ncv 40"), std::string::npos) << what;
+  }
+}
+
+TEST(SegmentationKMeans, FindsSeparatedBlobsDeterministically) {
+  Eigen::MatrixXd X(300, 2);
+  for (int i = 0; i < 300; ++i) {
+    const int c = i % 3;
+    X.row(i) << 10.0 * c + std::sin(i), -5.0 * c + std::cos(3.0 * i);
+  }
+  const KMeansResult a = kmeans(X, 3), b = kmeans(X, 3);
+  EXPECT_EQ(a.labels, b.labels);
+  for (int i = 3; i < 300; ++i) EXPECT_EQ(a.labels(i), a.labels(i % 3)) << i;
+  EXPECT_NE(a.labels(0), a.labels(1));
+  EXPECT_NE(a.labels(1), a.labels(2));
+}
+
+TEST(SegmentationMetrics, HungarianAndRandIndex) {
+  Eigen::MatrixXd score(3, 3);
+  score << 1, 2, 3, 2, 4, 6, 3, 6, 9;  // best: anti-diagonal is 3 + 4 + 3 = 10 vs diagonal 14
+  const std::vector<int> m = max_weight_matching(score);
+  EXPECT_EQ(m, (std::vector<int>{0, 1, 2}));
+  Eigen::MatrixXd rect(2, 3);
+  rect << 0, 5, 1, 4, 0, 0;
+  EXPECT_EQ(max_weight_matching(rect), (std::vector<int>{1, 0}));
+
+  Eigen::VectorXi truth(6), pred(6);
+  truth << 0, 0, 0, 1, 1, -1;
+  pred << 2, 2, 2, 0, 0, 1;  // a relabelling: perfect
+  LabelComparison c = compare_labels(pred, truth);
+  EXPECT_DOUBLE_EQ(c.mean_iou, 1.0);
+  EXPECT_DOUBLE_EQ(c.rand_index, 1.0);
+  EXPECT_EQ(c.compared, 5);
+  pred << 0, 0, 1, 1, 1, 1;  // one vertex wrong: IoUs 2/3 and 2/3; 4 of 10 pairs disagree
+  c = compare_labels(pred, truth);
+  EXPECT_NEAR(c.mean_iou, 2.0 / 3.0, 1e-12);
+  EXPECT_NEAR(c.rand_index, 0.6, 1e-12);
+}
+
+TEST(SegmentationCleanup, OrphanPatchJoinsItsNeighbourAndFacesFollow) {
+  const TriangleMesh strip = flat_strip(10);
+  const MeshGraph g = build_mesh_graph(strip.V, strip.F);
+  const Adjacency adj = adjacency(g);
+  Eigen::VectorXi labels(strip.num_vertices());
+  for (int v = 0; v < labels.size(); ++v) labels(v) = strip.V(v, 0) < 0 ? 0 : 1;
+  labels(2) = labels(3) = 1;  // a patch of label 1 inside label 0
+  const int moved = merge_orphan_patches(g, adj, vertex_areas(strip.V, strip.F), labels);
+  EXPECT_EQ(moved, 2);
+  for (int v = 0; v < labels.size(); ++v) EXPECT_EQ(labels(v), strip.V(v, 0) < 0 ? 0 : 1) << v;
+  const Eigen::VectorXi faces = face_labels_from_vertices(strip.F, labels);
+  EXPECT_EQ(faces(0), 0);
+  EXPECT_EQ(faces(faces.size() - 1), 1);
+}
+
+TEST(SegmentationScene, MannequinPartsAndNames) {
+  const TriangleMesh& body = test::DefaultScene::get().mannequin;
+  SegmentationOptions o;
+  o.parts = 6;
+  const SegmentationResult r = segment_mesh(body, o);
+  const LabelComparison c = compare_labels(r.vertex_labels, body.labels);
+  std::printf("mannequin: mean IoU %.3f, 1-Rand %.3f\n", c.mean_iou, 1 - c.rand_index);
+  EXPECT_GE(c.mean_iou, 0.85);
+  // Names: the part matched to each true part carries its name (head_neck is our head).
+  for (size_t t = 0; t < body.label_names.size(); ++t) {
+    const std::string want = body.label_names[t] == "head_neck" ? "head" : body.label_names[t];
+    ASSERT_GE(c.matched[t], 0);
+    EXPECT_EQ(r.parts[c.matched[t]].name, want);
+  }
+  EXPECT_GT(r.axes.up.y(), 0.95);  // estimated
+  EXPECT_GT(r.axes.forward.z(), 0.95) << r.axes.forward_source;
+  EXPECT_LT(r.eigen_residual, 1e-8);
+  // Deterministic.
+  EXPECT_EQ(segment_mesh(body, o).vertex_labels, r.vertex_labels);
+}
+
+TEST(SegmentationScene, GarmentsPartsAndNames) {
+  // Mean IoU reached today with the number of parts chosen by the eigengap (goal 0.80, not met for
+  // the skirt and trousers: docs/segmentation.md); a regression fails.
+  const double reached[] = {0.70, 0.65, 0.53};  // t-shirt, skirt, trousers
+  const auto& scene = test::DefaultScene::get();
+  for (size_t g = 0; g < all_garment_kinds().size(); ++g) {
+    const TriangleMesh& garment = scene.garments[g];
+    const SegmentationResult r = segment_mesh(garment);
+    const LabelComparison c = compare_labels(r.vertex_labels, garment.labels);
+    std::printf("%s: %d parts, mean IoU %.3f, 1-Rand %.3f:", to_string(all_garment_kinds()[g]).c_str(),
+                r.parts_chosen, c.mean_iou, 1 - c.rand_index);
+    for (const auto& p : r.parts) std::printf(" %s", p.name.c_str());
+    std::printf("\n");
+    EXPECT_GE(c.mean_iou, reached[g]) << to_string(all_garment_kinds()[g]);
+  }
+}
+
+TEST(SegmentationComponents, EachComponentGetsItsOwnParts) {
+  const auto& scene = test::DefaultScene::get();
+  // Mannequin and t-shirt apart from each other in one mesh: 6 + 3 parts, never across components.
+  const TriangleMesh both = side_by_side(scene.mannequin, scene.garments[0], Eigen::Vector3d(2, 0, 0));
+  SegmentationOptions o;
+  o.parts = 9;
+  const SegmentationResult r = segment_mesh(both, o);
+  EXPECT_EQ(r.components, 2);
+  ASSERT_EQ(r.parts_per_component.size(), 2u);
+  EXPECT_EQ(r.parts_per_component[0] + r.parts_per_component[1], 9);
+  for (int v = 0; v < both.num_vertices(); ++v)
+    EXPECT_EQ(r.parts[r.vertex_labels(v)].component, v < scene.mannequin.num_vertices() ? 0 : 1);
+}
+
+TEST(SegmentationBadInput, ClearErrorsOrDocumentedFallbacks) {
+  const TriangleMesh cube = fixtures::cube(1.0);
+  SegmentationOptions o;
+  o.parts = 9;  // more parts than the 8 vertices
+  EXPECT_THROW(segment_mesh(cube, o), InputError);
+  o.parts = -1;
+  EXPECT_THROW(segment_mesh(cube, o), InputError);
+  o.parts = 1;  // fewer parts than the two components
+  EXPECT_THROW(segment_mesh(side_by_side(cube, cube, Eigen::Vector3d(3, 0, 0)), o), InputError);
+  TriangleMesh no_faces = cube;
+  no_faces.F.resize(0, 3);
+  EXPECT_THROW(segment_mesh(no_faces), InputError);
+
+  // Isolated vertices: labelled −1, the rest segmented.
+  TriangleMesh isolated = cube;
+  isolated.V.conservativeResize(10, 3);
+  isolated.V.bottomRows(2) << 5, 5, 5, 6, 6, 6;
+  o.parts = 2;
+  const SegmentationResult r = segment_mesh(isolated, o);
+  EXPECT_EQ(r.isolated_vertices, 2);
+  EXPECT_EQ(r.vertex_labels(8), -1);
+  EXPECT_EQ(r.vertex_labels(9), -1);
+  EXPECT_GE(r.vertex_labels.head(8).minCoeff(), 0);
+
+  // Degenerate: every triangle has zero area (all vertices on a line). No crash, no NaN labels.
+  TriangleMesh line = flat_strip(6);
+  line.V.col(1).setZero();
+  const SegmentationResult d = segment_mesh(line, o);
+  EXPECT_EQ(d.parts_chosen, 2);
+  EXPECT_GE(d.vertex_labels.minCoeff(), 0);
+
+  // One part: everything in it.
+  o.parts = 1;
+  const SegmentationResult one = segment_mesh(cube, o);
+  EXPECT_EQ(one.vertex_labels.maxCoeff(), 0);
+  EXPECT_EQ(one.vertex_labels.minCoeff(), 0);
+}
