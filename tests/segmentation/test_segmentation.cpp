@@ -161,6 +161,7 @@ TEST(SegmentationMetrics, HungarianAndRandIndex) {
   c = compare_labels(pred, truth);
   EXPECT_NEAR(c.mean_iou, 2.0 / 3.0, 1e-12);
   EXPECT_NEAR(c.rand_index, 0.6, 1e-12);
+  EXPECT_NEAR(c.agreement, 0.8, 1e-12);
 }
 
 TEST(SegmentationCleanup, OrphanPatchJoinsItsNeighbourAndFacesFollow) {

@@ -14,6 +14,7 @@ struct LabelComparison {
   std::vector<double> iou;
   double mean_iou = 0.0;  ///< mean over truth labels (unmatched count as 0)
   double rand_index = 0.0;  ///< fraction of vertex pairs on which both labelings agree
+  double agreement = 0.0;   ///< fraction of compared vertices whose label is the one matched to their truth
   int compared = 0;         ///< vertices with a truth label
 };
 
