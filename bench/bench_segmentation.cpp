@@ -1,5 +1,6 @@
 // Segmentation benchmark (issue 5) on gc_mean_all (23 752 vertices):
-//  1. end to end (load + segment_mesh) on one thread, median of the repetitions, with the phases and
+//  1. end to end (load + segment_mesh) on one thread, median of the repetitions, with the phases
+//  and
 //     the eigen residual max ‖L x − λ x‖;
 //  2. error against run time over the eigen-solver's tolerance and subspace size (ncv): time, eigen
 //     residual, and label agreement with the reference run (tolerance 1e-12, ncv 60) → CSV;
@@ -49,10 +50,12 @@ void write_matrix_market(const std::string& path, const MeshGraph& graph, std::v
   out << rows << " " << rows << " " << graph.num_edges() << "\n";
   out.precision(17);
   for (int e = 0; e < graph.num_edges(); ++e)  // lower triangle: row > column, 1-based
-    out << index[graph.to(e)] + 1 << " " << index[graph.from(e)] + 1 << " " << graph.affinity(e) << "\n";
+    out << index[graph.to(e)] + 1 << " " << index[graph.from(e)] + 1 << " " << graph.affinity(e)
+        << "\n";
 }
 
-void write_labels(const std::string& path, const Eigen::VectorXi& labels, const std::vector<int>& index) {
+void write_labels(const std::string& path, const Eigen::VectorXi& labels,
+                  const std::vector<int>& index) {
   std::ofstream out(path);
   for (int i = 0; i < labels.size(); ++i)
     if (index[i] >= 0) out << labels(i) << "\n";
@@ -88,13 +91,15 @@ int main(int argc, char** argv) {
     eigen.push_back(reference_run.seconds.eigen);
     clustering.push_back(reference_run.seconds.clustering);
   }
-  std::printf("gc_mean_all: %d vertices, %d faces, %d parts\n", mesh.num_vertices(), mesh.num_faces(),
-              reference_run.parts_chosen);
-  std::printf("end to end (load + segment): %.0f ms  [load %.0f, graph %.0f, eigen %.0f, clustering %.0f ms]\n",
-              median(total) * 1e3, median(load) * 1e3, median(graph) * 1e3, median(eigen) * 1e3,
-              median(clustering) * 1e3);
-  std::printf("eigen residual max |Lx - lx| = %.2e (%d Lanczos restarts)\n", reference_run.eigen_residual,
-              reference_run.eigen_iterations);
+  std::printf("gc_mean_all: %d vertices, %d faces, %d parts\n", mesh.num_vertices(),
+              mesh.num_faces(), reference_run.parts_chosen);
+  std::printf(
+      "end to end (load + segment): %.0f ms  [load %.0f, graph %.0f, eigen %.0f, clustering %.0f "
+      "ms]\n",
+      median(total) * 1e3, median(load) * 1e3, median(graph) * 1e3, median(eigen) * 1e3,
+      median(clustering) * 1e3);
+  std::printf("eigen residual max |Lx - lx| = %.2e (%d Lanczos restarts)\n",
+              reference_run.eigen_residual, reference_run.eigen_iterations);
 
   // 2. Error against run time over tolerance × ncv.
   SegmentationOptions tight = body_options();
@@ -106,8 +111,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "cannot write %s\n", csv_path.c_str());
     return 3;
   }
-  if (csv) std::fprintf(csv, "tolerance,ncv,converged,seconds_total,seconds_eigen,eigen_residual,agreement,mean_iou\n");
-  std::printf("%9s %4s %9s %9s %10s %9s %8s\n", "tol", "ncv", "total ms", "eigen ms", "residual", "agreement", "mean IoU");
+  if (csv)
+    std::fprintf(
+        csv,
+        "tolerance,ncv,converged,seconds_total,seconds_eigen,eigen_residual,agreement,mean_iou\n");
+  std::printf("%9s %4s %9s %9s %10s %9s %8s\n", "tol", "ncv", "total ms", "eigen ms", "residual",
+              "agreement", "mean IoU");
   for (double tol : {1e-1, 1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12})
     for (int ncv : {10, 12, 16, 24, 40}) {
       SegmentationOptions o = body_options();
@@ -126,13 +135,15 @@ int main(int argc, char** argv) {
           converged = false;
         }
       }
-      const LabelComparison c = converged ? compare_labels(r.vertex_labels, reference.vertex_labels) : LabelComparison{};
+      const LabelComparison c =
+          converged ? compare_labels(r.vertex_labels, reference.vertex_labels) : LabelComparison{};
       std::printf("%9.0e %4d %9.0f %9.0f %10.2e %9.4f %8.4f%s\n", tol, ncv, median(t_total) * 1e3,
-                  median(t_eigen) * 1e3, converged ? r.eigen_residual : 0.0, c.agreement, c.mean_iou,
-                  converged ? "" : "  (did not converge)");
+                  median(t_eigen) * 1e3, converged ? r.eigen_residual : 0.0, c.agreement,
+                  c.mean_iou, converged ? "" : "  (did not converge)");
       if (csv)
-        std::fprintf(csv, "%g,%d,%d,%.6f,%.6f,%.6e,%.6f,%.6f\n", tol, ncv, converged ? 1 : 0, median(t_total),
-                     median(t_eigen), converged ? r.eigen_residual : 0.0, c.agreement, c.mean_iou);
+        std::fprintf(csv, "%g,%d,%d,%.6f,%.6f,%.6e,%.6f,%.6f\n", tol, ncv, converged ? 1 : 0,
+                     median(t_total), median(t_eigen), converged ? r.eigen_residual : 0.0,
+                     c.agreement, c.mean_iou);
     }
   if (csv) std::fclose(csv);
 
@@ -154,8 +165,9 @@ int main(int argc, char** argv) {
     write_labels(export_dir + "/gc_labels_final.txt", reference_run.vertex_labels, index);
     std::ofstream timing(export_dir + "/gc_plain_seconds.txt");
     timing << median(t) << "\n";
-    std::printf("exported %s/gc_affinity.mtx; plain spectral clustering (eigen + k-means) %.0f ms\n",
-                export_dir.c_str(), median(t) * 1e3);
+    std::printf(
+        "exported %s/gc_affinity.mtx; plain spectral clustering (eigen + k-means) %.0f ms\n",
+        export_dir.c_str(), median(t) * 1e3);
   }
   return 0;
 }

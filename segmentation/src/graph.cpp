@@ -1,7 +1,6 @@
 #include "dresskit/segmentation/graph.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -19,9 +18,12 @@ AffinityKind parse_affinity(const std::string& text) {
 
 std::string to_string(AffinityKind kind) {
   switch (kind) {
-    case AffinityKind::dihedral: return "dihedral";
-    case AffinityKind::edge_length: return "edge-length";
-    case AffinityKind::cotangent: return "cotangent";
+    case AffinityKind::dihedral:
+      return "dihedral";
+    case AffinityKind::edge_length:
+      return "edge-length";
+    case AffinityKind::cotangent:
+      return "cotangent";
   }
   return "?";
 }
@@ -93,7 +95,8 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
         // Convex when the second face's far corner lies behind the first face's plane.
         const Eigen::Vector3d d = (V.row(half[h0 + 1].opposite) - V.row(i)).transpose();
         const bool convex = n1.dot(d) <= 0;
-        angular(e) = (convex ? options.convex_weight : 1.0) * (1.0 - std::clamp(n1.dot(n2), -1.0, 1.0));
+        angular(e) =
+            (convex ? options.convex_weight : 1.0) * (1.0 - std::clamp(n1.dot(n2), -1.0, 1.0));
       }
     }
   }

@@ -3,7 +3,6 @@
 // undirected edge, arrays per attribute.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-
 #include <string>
 #include <vector>
 
@@ -48,12 +47,12 @@ Eigen::SparseMatrix<double> affinity_matrix(const MeshGraph& graph);
 /// their own component), numbered in order of their first vertex. Returns the number of components.
 int connected_components(const MeshGraph& graph, Eigen::VectorXi& component);
 
-/// Normalised cut of a labelling: Σ over labels of (affinity leaving the label) / (its total degree).
-/// Vertices labelled −1 are ignored, and so are edges to them.
+/// Normalised cut of a labelling: Σ over labels of (affinity leaving the label) / (its total
+/// degree). Vertices labelled −1 are ignored, and so are edges to them.
 double normalized_cut(const MeshGraph& graph, const Eigen::VectorXi& labels);
 
-/// Vertex adjacency lists (CSR): neighbours of v are adj[start[v] .. start[v+1]), with the edge index
-/// of each in edge.
+/// Vertex adjacency lists (CSR): neighbours of v are adj[start[v] .. start[v+1]), with the edge
+/// index of each in edge.
 struct Adjacency {
   std::vector<int> start, adj, edge;
 };
