@@ -175,7 +175,7 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
       parts[head].name = "head";
       parts[head].confidence = clamp01(1.0 - off_axis(head) / std::max(off_axis(upper[1]), 1e-12));
       const double legs_gap = at[limbs[2]].dot(axes.up) - at[limbs[1]].dot(axes.up);
-      const double legs_span = at[limbs[5]].dot(axes.up) - at[limbs[0]].dot(axes.up);
+      const double legs_span = at[limbs.back()].dot(axes.up) - at[limbs[0]].dot(axes.up);
       const double leg_conf = legs_span > 0 ? clamp01(legs_gap / legs_span * 2) : 0.0;
       double lr = 0;
       auto [ll, lr_leg] = left_first(limbs[0], limbs[1], geo, axes, lr);
