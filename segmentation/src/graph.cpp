@@ -70,6 +70,7 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
   g.from.resize(m);
   g.to.resize(m);
   g.length.resize(m);
+  g.faces.resize(m);
   g.affinity.resize(m);
   Eigen::VectorXd angular = Eigen::VectorXd::Zero(m), base = Eigen::VectorXd::Ones(m);
   for (int e = 0; e < m; ++e) {
@@ -78,6 +79,7 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
     g.from(e) = i;
     g.to(e) = j;
     g.length(e) = (V.row(i) - V.row(j)).norm();
+    g.faces(e) = static_cast<int>(h1 - h0);
     if (options.kind == AffinityKind::cotangent) {
       double cot = 0.0;
       for (size_t h = h0; h < h1; ++h) {

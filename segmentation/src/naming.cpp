@@ -186,8 +186,9 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
       parts[ar] = {"arm_right", parts[head].confidence * lr, c, geo[ar].vertices, geo[ar].area};
       continue;
     }
-    if (ls.size() == 1) {  // one garment part: a skirt widens downwards, anything else is a body
+    if (ls.size() == 1) {  // one garment part: a skirt is a tube (waist, hem) or widens downwards
       const int l = ls[0];
+      const int loops = count_boundary_loops(graph, [&](int v) { return labels(v) == l; });
       double spread[2] = {0, 0}, weight[2] = {0, 0};
       for (int v = 0; v < labels.size(); ++v) {
         if (labels(v) != l) continue;
@@ -198,9 +199,10 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
       }
       const double lower = weight[0] > 0 ? spread[0] / weight[0] : 0,
                    upper = weight[1] > 0 ? spread[1] / weight[1] : 0;
-      const bool skirt = lower > 1.1 * upper;
+      const bool skirt = loops == 2 || lower > 1.1 * upper;
       parts[l].name = skirt ? "skirt" : "body";
-      parts[l].confidence = clamp01(std::abs(lower - upper) / std::max(lower + upper, 1e-12) * 4);
+      parts[l].confidence =
+          loops == 2 ? 0.8 : clamp01(std::abs(lower - upper) / std::max(lower + upper, 1e-12) * 4);
       continue;
     }
     // A garment with several parts: the hub is the body, legs hang below it, sleeves stick out.

@@ -219,6 +219,11 @@ TEST(SegmentationScene, GarmentsPartsAndNames) {
     std::printf("\n");
     EXPECT_GE(c.mean_iou, reached[g]) << to_string(all_garment_kinds()[g]);
   }
+  // A skirt in one part is named by its two boundary loops (waist and hem).
+  SegmentationOptions one;
+  one.parts = 1;
+  EXPECT_EQ(segment_mesh(scene.garments[1], one).parts[0].name, "skirt");
+  EXPECT_EQ(segment_mesh(scene.garments[0], one).parts[0].name, "body");
 }
 
 TEST(SegmentationComponents, EachComponentGetsItsOwnParts) {
