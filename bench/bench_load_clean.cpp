@@ -9,25 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/io.h"
 
 using namespace dresskit;
 
-namespace {
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
-std::string cpu_model() {
-  std::ifstream in("/proc/cpuinfo");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
-  }
-  return "unknown CPU";
-}
-}  // namespace
+using bench::cpu_model;
+using bench::median;
 
 int main(int argc, char** argv) {
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 7;

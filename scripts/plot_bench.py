@@ -5,6 +5,7 @@ usage: scripts/plot_bench.py stability IN.csv OUT.png
        scripts/plot_bench.py error IN.csv OUT.png
        scripts/plot_bench.py heat IN.csv OUT.png        (bench_heat_error's CSV)
        scripts/plot_bench.py surface IN.csv OUT.png     (dress-a-mesh thickness --plot's temperature.csv)
+       scripts/plot_bench.py segmentation IN.csv OUT.png (bench_segmentation --csv)
 """
 import csv
 import sys
@@ -107,7 +108,31 @@ def surface(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def segmentation(rows, out):
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    ncvs = sorted({int(r["ncv"]) for r in rows})
+    for ncv, colour in zip(ncvs, plt.cm.viridis([i / max(1, len(ncvs) - 1) for i in range(len(ncvs))])):
+        pts = [(float(r["seconds_total"]) * 1e3, float(r["eigen_residual"]), 1 - float(r["agreement"]),
+                "%g" % float(r["tolerance"])) for r in rows if int(r["ncv"]) == ncv and r["converged"] == "1"]
+        axes[0].loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=4, color=colour, label="ncv %d" % ncv)
+        axes[1].semilogy([p[0] for p in pts], [max(p[2], 1e-6) for p in pts], "o-", ms=4, color=colour,
+                         label="ncv %d" % ncv)
+        for p in pts:
+            axes[0].annotate(p[3], (p[0], p[1]), fontsize=6, xytext=(3, 2), textcoords="offset points")
+    axes[0].axhline(1e-8, color="grey", ls="--", lw=0.8)
+    axes[0].set_ylabel("eigen residual max |Lx - lx| (labels: solver tolerance)")
+    axes[1].set_ylabel("1 - label agreement with the reference (floor 1e-6 = identical)")
+    for ax in axes:
+        ax.axvline(1000, color="grey", ls=":", lw=0.8)
+        ax.set_xlabel("segment_mesh wall time [ms], one core")
+        ax.legend(fontsize=7)
+    fig.suptitle("gc_mean_all (23 752 vertices, 6 parts): error against run time over tolerance and ncv")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 if __name__ == "__main__":
     kind, src, out = sys.argv[1:4]
     rows = list(csv.DictReader(open(src)))
-    {"stability": stability, "error": error, "heat": heat, "surface": surface}[kind](rows, out)
+    {"stability": stability, "error": error, "heat": heat, "surface": surface,
+     "segmentation": segmentation}[kind](rows, out)

@@ -1,13 +1,12 @@
 #include "segment_command.h"
 
-#include <nlohmann/json.hpp>
-
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
@@ -20,12 +19,18 @@ namespace fs = std::filesystem;
 
 Eigen::Vector3d axis_vector(UpAxis axis) {
   switch (axis) {
-    case UpAxis::pos_x: return Eigen::Vector3d::UnitX();
-    case UpAxis::neg_x: return -Eigen::Vector3d::UnitX();
-    case UpAxis::pos_y: return Eigen::Vector3d::UnitY();
-    case UpAxis::neg_y: return -Eigen::Vector3d::UnitY();
-    case UpAxis::pos_z: return Eigen::Vector3d::UnitZ();
-    case UpAxis::neg_z: return -Eigen::Vector3d::UnitZ();
+    case UpAxis::pos_x:
+      return Eigen::Vector3d::UnitX();
+    case UpAxis::neg_x:
+      return -Eigen::Vector3d::UnitX();
+    case UpAxis::pos_y:
+      return Eigen::Vector3d::UnitY();
+    case UpAxis::neg_y:
+      return -Eigen::Vector3d::UnitY();
+    case UpAxis::pos_z:
+      return Eigen::Vector3d::UnitZ();
+    case UpAxis::neg_z:
+      return -Eigen::Vector3d::UnitZ();
   }
   return Eigen::Vector3d::Zero();
 }
@@ -51,7 +56,8 @@ std::vector<int> labels_in_file_order(const TriangleMesh& mesh, const Eigen::Vec
 int label_duplicates(const TriangleMesh& mesh, Eigen::VectorXi& labels) {
   std::map<std::array<double, 3>, int> labelled;
   for (int i = 0; i < mesh.num_vertices(); ++i)
-    if (labels(i) >= 0) labelled.emplace(std::array<double, 3>{mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2)}, labels(i));
+    if (labels(i) >= 0)
+      labelled.emplace(std::array<double, 3>{mesh.V(i, 0), mesh.V(i, 1), mesh.V(i, 2)}, labels(i));
   int filled = 0;
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     if (labels(i) >= 0) continue;
@@ -77,61 +83,85 @@ TriangleMesh part_mesh(const TriangleMesh& mesh, const Eigen::VectorXi& face_lab
   }
   TriangleMesh out;
   out.V.resize(static_cast<Eigen::Index>(vertices.size()), 3);
-  for (size_t k = 0; k < vertices.size(); ++k) out.V.row(static_cast<Eigen::Index>(k)) = mesh.V.row(vertices[k]);
+  for (size_t k = 0; k < vertices.size(); ++k)
+    out.V.row(static_cast<Eigen::Index>(k)) = mesh.V.row(vertices[k]);
   out.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (size_t f = 0; f < faces.size(); ++f) out.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  for (size_t f = 0; f < faces.size(); ++f)
+    out.F.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
   return out;
 }
 
 json result_json(const std::string& path, const TriangleMesh& mesh, const SegmentationResult& r,
-                 const std::vector<int>& file_labels, int duplicates, const SegmentationOptions& o) {
+                 const std::vector<int>& file_labels, int duplicates,
+                 const SegmentationOptions& o) {
   json parts = json::array();
   for (size_t p = 0; p < r.parts.size(); ++p)
-    parts.push_back({{"label", p}, {"name", r.parts[p].name}, {"confidence", r.parts[p].confidence},
-                     {"component", r.parts[p].component}, {"vertices", r.parts[p].vertices},
+    parts.push_back({{"label", p},
+                     {"name", r.parts[p].name},
+                     {"confidence", r.parts[p].confidence},
+                     {"component", r.parts[p].component},
+                     {"vertices", r.parts[p].vertices},
                      {"area_m2", r.parts[p].area}});
-  return {{"input", path},
-          {"vertices", file_labels.size()},
-          {"faces", mesh.num_faces()},
-          {"components", r.components},
-          {"parts", r.parts_chosen},
-          {"parts_chosen_by", r.parts_automatic ? "eigengap" : "given"},
-          {"parts_per_component", r.parts_per_component},
-          {"part_names", r.part_names()},
-          {"part_details", parts},
-          {"eigengap", r.eigengap},
-          {"spectrum", std::vector<double>(r.spectrum.data(), r.spectrum.data() + r.spectrum.size())},
-          {"eigen_residual", r.eigen_residual},
-          {"eigen_iterations", r.eigen_iterations},
-          {"isolated_vertices", r.isolated_vertices},
-          {"duplicate_vertices_labelled", duplicates},
-          {"relabelled_by_cleanup", r.relabelled_vertices},
-          {"normalized_cut", r.normalized_cut},
-          {"clusters_before_merge", r.clusters_before_merge},
-          {"axes",
-           {{"up", vec(r.axes.up)}, {"up_source", r.axes.up_source}, {"forward", vec(r.axes.forward)},
-            {"forward_source", r.axes.forward_source}, {"left", vec(r.axes.left)}}},
-          {"options",
-           {{"affinity", to_string(o.affinity.kind)}, {"convex_weight", o.affinity.convex_weight},
-            {"laplacian", to_string(o.laplacian)}, {"tolerance", o.eigen.tolerance}, {"ncv", o.eigen.ncv},
-            {"kmeans_restarts", o.kmeans.restarts}, {"over_segmentation", o.over_segmentation}, {"seed", o.kmeans.seed}, {"cleanup", o.cleanup}}},
-          {"seconds",
-           {{"graph", r.seconds.graph}, {"eigen", r.seconds.eigen}, {"clustering", r.seconds.clustering}, {"naming", r.seconds.naming}, {"total", r.seconds.total}}},
-          {"vertex_labels_order", "input file vertex order (OBJ v lines)"},
-          {"vertex_labels", file_labels},
-          {"face_labels_order", "triangles of the loaded mesh (a quad a-b-c-d is a-b-c, a-c-d)"},
-          {"face_labels", std::vector<int>(r.face_labels.data(), r.face_labels.data() + r.face_labels.size())}};
+  return {
+      {"input", path},
+      {"vertices", file_labels.size()},
+      {"faces", mesh.num_faces()},
+      {"components", r.components},
+      {"parts", r.parts_chosen},
+      {"parts_chosen_by", r.parts_automatic ? "eigengap" : "given"},
+      {"parts_per_component", r.parts_per_component},
+      {"part_names", r.part_names()},
+      {"part_details", parts},
+      {"eigengap", r.eigengap},
+      {"spectrum", std::vector<double>(r.spectrum.data(), r.spectrum.data() + r.spectrum.size())},
+      {"eigen_residual", r.eigen_residual},
+      {"eigen_iterations", r.eigen_iterations},
+      {"isolated_vertices", r.isolated_vertices},
+      {"duplicate_vertices_labelled", duplicates},
+      {"relabelled_by_cleanup", r.relabelled_vertices},
+      {"normalized_cut", r.normalized_cut},
+      {"clusters_before_merge", r.clusters_before_merge},
+      {"axes",
+       {{"up", vec(r.axes.up)},
+        {"up_source", r.axes.up_source},
+        {"forward", vec(r.axes.forward)},
+        {"forward_source", r.axes.forward_source},
+        {"left", vec(r.axes.left)}}},
+      {"options",
+       {{"affinity", to_string(o.affinity.kind)},
+        {"convex_weight", o.affinity.convex_weight},
+        {"laplacian", to_string(o.laplacian)},
+        {"tolerance", o.eigen.tolerance},
+        {"ncv", o.eigen.ncv},
+        {"kmeans_restarts", o.kmeans.restarts},
+        {"over_segmentation", o.over_segmentation},
+        {"seed", o.kmeans.seed},
+        {"cleanup", o.cleanup}}},
+      {"seconds",
+       {{"graph", r.seconds.graph},
+        {"eigen", r.seconds.eigen},
+        {"clustering", r.seconds.clustering},
+        {"naming", r.seconds.naming},
+        {"total", r.seconds.total}}},
+      {"vertex_labels_order", "input file vertex order (OBJ v lines)"},
+      {"vertex_labels", file_labels},
+      {"face_labels_order", "triangles of the loaded mesh (a quad a-b-c-d is a-b-c, a-c-d)"},
+      {"face_labels",
+       std::vector<int>(r.face_labels.data(), r.face_labels.data() + r.face_labels.size())}};
 }
 
 // Writes every file into a fresh temporary folder beside DIR, then moves them in; on failure the
 // temporary folder is removed and DIR is left as it was.
-void write_outputs(const std::string& dir, const std::vector<std::pair<std::string, std::string>>& texts,
+void write_outputs(const std::string& dir,
+                   const std::vector<std::pair<std::string, std::string>>& texts,
                    const std::vector<std::pair<std::string, TriangleMesh>>& meshes) {
   const fs::path target = fs::absolute(dir).lexically_normal();
-  const fs::path temp = target.parent_path() / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  const fs::path temp = target.parent_path() /
+                        ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
   std::error_code ec;
   fs::remove_all(temp, ec);
-  if (!fs::create_directories(temp, ec) || ec) throw OutputError(dir + ": cannot create directory: " + ec.message());
+  if (!fs::create_directories(temp, ec) || ec)
+    throw OutputError(dir + ": cannot create directory: " + ec.message());
   try {
     for (const auto& [name, text] : texts) write_file_atomically((temp / name).string(), text);
     for (const auto& [name, mesh] : meshes) save_mesh(mesh, (temp / name).string());
@@ -140,7 +170,8 @@ void write_outputs(const std::string& dir, const std::vector<std::pair<std::stri
       return;
     }
     if (!fs::is_directory(target)) throw OutputError(dir + ": exists and is not a directory");
-    for (const auto& entry : fs::directory_iterator(temp)) fs::rename(entry.path(), target / entry.path().filename());
+    for (const auto& entry : fs::directory_iterator(temp))
+      fs::rename(entry.path(), target / entry.path().filename());
     fs::remove(temp);
   } catch (const fs::filesystem_error& e) {
     fs::remove_all(temp, ec);
@@ -154,27 +185,33 @@ void write_outputs(const std::string& dir, const std::vector<std::pair<std::stri
 }  // namespace
 
 void SegmentCommand::add_to(CLI::App& app) {
-  command = app.add_subcommand("segment", "cut a body or garment mesh into named parts by spectral "
-                                          "clustering; writes labels.json, segments.ply and one OBJ "
-                                          "per part (docs/segmentation.md)");
+  command = app.add_subcommand("segment",
+                               "cut a body or garment mesh into named parts by spectral "
+                               "clustering; writes labels.json, segments.ply and one OBJ "
+                               "per part (docs/segmentation.md)");
   command->add_option("MESH", path, "input mesh (obj, ply, off, stl, gltf, glb, fbx)")->required();
   command->add_option("--parts", parts, "number of parts (default: chosen by the eigengap)");
   command->add_option("--max-parts", options.max_parts, "largest automatic number of parts")
       ->capture_default_str();
   command->add_option("--units", units, "source length unit: m, dm, cm, mm or metres per unit")
       ->capture_default_str();
-  command->add_option("--up", up, "source up axis: +x, -x, +y, -y, +z, -z (default: estimated by PCA, "
-                                  "the mesh read as +y)");
-  command->add_option("--forward", forward, "the character's facing axis after --up "
-                                            "(default: estimated from the feet, else +z)");
+  command->add_option("--up", up,
+                      "source up axis: +x, -x, +y, -y, +z, -z (default: estimated by PCA, "
+                      "the mesh read as +y)");
+  command->add_option("--forward", forward,
+                      "the character's facing axis after --up "
+                      "(default: estimated from the feet, else +z)");
   command->add_option("-o,--output", output, "output directory")->required();
-  command->add_option("--affinity", affinity, "dihedral, edge-length or cotangent")->capture_default_str();
+  command->add_option("--affinity", affinity, "dihedral, edge-length or cotangent")
+      ->capture_default_str();
   command->add_option("--laplacian", laplacian, "normalized or plain")->capture_default_str();
-  command->add_option("--tolerance", options.eigen.tolerance, "eigen-solver tolerance")->capture_default_str();
+  command->add_option("--tolerance", options.eigen.tolerance, "eigen-solver tolerance")
+      ->capture_default_str();
   command->add_option("--ncv", options.eigen.ncv, "eigen-solver subspace size (0: automatic)")
       ->capture_default_str();
-  command->add_option("--over-segmentation", options.over_segmentation,
-                      "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)")
+  command
+      ->add_option("--over-segmentation", options.over_segmentation,
+                   "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)")
       ->capture_default_str();
   command->add_flag("--json", as_json, "print labels.json's summary fields as JSON");
 }
@@ -186,7 +223,8 @@ int SegmentCommand::run() {
   if (parts != -1 && parts < 1)
     throw InputError("--parts: " + std::to_string(parts) + " (must be at least 1)");
   options.parts = parts == -1 ? 0 : parts;
-  if (options.max_parts < 1) throw InputError("--max-parts: " + std::to_string(options.max_parts) + " (must be at least 1)");
+  if (options.max_parts < 1)
+    throw InputError("--max-parts: " + std::to_string(options.max_parts) + " (must be at least 1)");
   options.affinity.kind = parse_affinity(affinity);
   options.laplacian = parse_laplacian(laplacian);
   if (command->count("--up")) options.up = Eigen::Vector3d::UnitY();  // the loader turned it to +Y
@@ -212,7 +250,8 @@ int SegmentCommand::run() {
   coloured.label_names = r.part_names();
   std::vector<std::pair<std::string, TriangleMesh>> meshes = {{"segments.ply", coloured}};
   for (size_t p = 0; p < r.parts.size(); ++p)
-    meshes.emplace_back(r.parts[p].name + ".obj", part_mesh(mesh, r.face_labels, static_cast<int>(p)));
+    meshes.emplace_back(r.parts[p].name + ".obj",
+                        part_mesh(mesh, r.face_labels, static_cast<int>(p)));
   write_outputs(output, {{"labels.json", report.dump(1) + "\n"}}, meshes);
 
   if (as_json) {
@@ -222,21 +261,23 @@ int SegmentCommand::run() {
     std::cout << summary.dump(2) << "\n";
     return 0;
   }
-  std::printf("%s: %d vertices, %d faces, %d component(s); %d parts (%s", path.c_str(), mesh.num_vertices(),
-              mesh.num_faces(), r.components, r.parts_chosen, r.parts_automatic ? "eigengap" : "given");
+  std::printf("%s: %d vertices, %d faces, %d component(s); %d parts (%s", path.c_str(),
+              mesh.num_vertices(), mesh.num_faces(), r.components, r.parts_chosen,
+              r.parts_automatic ? "eigengap" : "given");
   if (r.eigengap > 0) std::printf(", eigengap %.2f", r.eigengap);
   std::printf(")\n");
   for (const auto& p : r.parts)
-    std::printf("  %-14s %6d vertices  %7.4f m²  confidence %.2f\n", p.name.c_str(), p.vertices, p.area,
-                p.confidence);
+    std::printf("  %-14s %6d vertices  %7.4f m²  confidence %.2f\n", p.name.c_str(), p.vertices,
+                p.area, p.confidence);
   std::printf("up (%.2f %.2f %.2f) %s, forward (%.2f %.2f %.2f) %s; eigen residual %.1e; %.0f ms\n",
-              r.axes.up.x(), r.axes.up.y(), r.axes.up.z(), r.axes.up_source.c_str(), r.axes.forward.x(),
-              r.axes.forward.y(), r.axes.forward.z(), r.axes.forward_source.c_str(), r.eigen_residual,
-              r.seconds.total * 1e3);
+              r.axes.up.x(), r.axes.up.y(), r.axes.up.z(), r.axes.up_source.c_str(),
+              r.axes.forward.x(), r.axes.forward.y(), r.axes.forward.z(),
+              r.axes.forward_source.c_str(), r.eigen_residual, r.seconds.total * 1e3);
   if (r.isolated_vertices)
-    std::printf("%d vertices without a face (%d duplicates labelled, the rest -1)\n", r.isolated_vertices,
-                duplicates);
-  std::printf("wrote labels.json, segments.ply and %zu part OBJs to %s\n", r.parts.size(), output.c_str());
+    std::printf("%d vertices without a face (%d duplicates labelled, the rest -1)\n",
+                r.isolated_vertices, duplicates);
+  std::printf("wrote labels.json, segments.ply and %zu part OBJs to %s\n", r.parts.size(),
+              output.c_str());
   return 0;
 }
 

@@ -10,8 +10,9 @@ int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adj,
   const int n = graph.num_vertices;
   int relabelled = 0;
   // Each round finds the patches (connected runs of one label), keeps the largest of each label and
-  // hands every other patch that touches a kept patch to the kept label it shares most affinity with.
-  // Rounds repeat for orphans enclosed by other orphans; an orphan with no labelled neighbour stays.
+  // hands every other patch that touches a kept patch to the kept label it shares most affinity
+  // with. Rounds repeat for orphans enclosed by other orphans; an orphan with no labelled neighbour
+  // stays.
   for (int round = 0; round < 64; ++round) {
     std::vector<int> patch(n, -1);
     std::vector<int> patch_label;
@@ -40,10 +41,11 @@ int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adj,
     std::map<int, int> largest;  // label → its largest patch
     for (int p = 0; p < static_cast<int>(patch_label.size()); ++p) {
       auto it = largest.find(patch_label[p]);
-      if (it == largest.end() || patch_area[p] > patch_area[it->second]) largest[patch_label[p]] = p;
+      if (it == largest.end() || patch_area[p] > patch_area[it->second])
+        largest[patch_label[p]] = p;
     }
-    // Affinity from each orphan patch to each neighbouring kept patch. Orphans move into kept patches
-    // only (never into another orphan), so kept patches only grow and the rounds end.
+    // Affinity from each orphan patch to each neighbouring kept patch. Orphans move into kept
+    // patches only (never into another orphan), so kept patches only grow and the rounds end.
     std::vector<std::map<int, double>> toward(patch_label.size());
     auto kept = [&](int p) { return largest[patch_label[p]] == p; };
     for (int e = 0; e < graph.num_edges(); ++e) {
@@ -56,9 +58,10 @@ int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adj,
     bool any = false;
     for (int p = 0; p < static_cast<int>(patch_label.size()); ++p) {
       if (kept(p) || toward[p].empty()) continue;
-      target[p] = std::max_element(toward[p].begin(), toward[p].end(), [](const auto& x, const auto& y) {
-                    return x.second < y.second;
-                  })->first;
+      target[p] =
+          std::max_element(toward[p].begin(), toward[p].end(), [](const auto& x, const auto& y) {
+            return x.second < y.second;
+          })->first;
       any = true;
     }
     if (!any) break;
@@ -135,11 +138,24 @@ int leaves(const Eigen::MatrixXd& cut, const std::vector<bool>& alive) {
   return count;
 }
 
-double ncut(const Eigen::MatrixXd& cut, const Eigen::VectorXd& volume, const std::vector<bool>& alive) {
+double ncut(const Eigen::MatrixXd& cut, const Eigen::VectorXd& volume,
+            const std::vector<bool>& alive) {
   double sum = 0;
   for (int a = 0; a < cut.rows(); ++a)
     if (alive[a] && volume(a) > 0) sum += cut.row(a).sum() / volume(a);
   return sum;
+}
+
+// Part b joins part a in the part graph.
+void merge_part(int a, int b, Eigen::MatrixXd& cut, Eigen::VectorXd& volume,
+                std::vector<bool>& alive) {
+  cut.row(a) += cut.row(b);
+  cut.col(a) += cut.col(b);
+  cut(a, a) = 0;
+  cut.row(b).setZero();
+  cut.col(b).setZero();
+  volume(a) += volume(b);
+  alive[b] = false;
 }
 
 }  // namespace
@@ -170,25 +186,14 @@ int merge_parts_towards_star(const MeshGraph& graph, int target, Eigen::VectorXi
         Eigen::MatrixXd c = cut;
         Eigen::VectorXd v = volume;
         std::vector<bool> live = alive;
-        c.row(a) += c.row(b);
-        c.col(a) += c.col(b);
-        c(a, a) = 0;
-        c.row(b).setZero();
-        c.col(b).setZero();
-        v(a) += v(b);
-        live[b] = false;
+        merge_part(a, b, c, v, live);
         const int l = leaves(c, live);
         const double n = ncut(c, v, live);
-        if (l > best_leaves || (l == best_leaves && n < best_ncut)) best_a = a, best_b = b, best_leaves = l, best_ncut = n;
+        if (l > best_leaves || (l == best_leaves && n < best_ncut))
+          best_a = a, best_b = b, best_leaves = l, best_ncut = n;
       }
     if (best_a < 0) break;  // no adjacent parts left (should not happen within one component)
-    cut.row(best_a) += cut.row(best_b);
-    cut.col(best_a) += cut.col(best_b);
-    cut(best_a, best_a) = 0;
-    cut.row(best_b).setZero();
-    cut.col(best_b).setZero();
-    volume(best_a) += volume(best_b);
-    alive[best_b] = false;
+    merge_part(best_a, best_b, cut, volume, alive);
     for (int& x : into)
       if (x == best_b) x = best_a;
   }
@@ -201,7 +206,8 @@ int merge_parts_towards_star(const MeshGraph& graph, int target, Eigen::VectorXi
   return leaves(cut, alive);
 }
 
-Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels) {
+Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F,
+                                          const Eigen::VectorXi& labels) {
   Eigen::VectorXi out(F.rows());
   for (int f = 0; f < F.rows(); ++f) {
     const int a = labels(F(f, 0)), b = labels(F(f, 1)), c = labels(F(f, 2));

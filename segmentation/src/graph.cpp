@@ -1,7 +1,6 @@
 #include "dresskit/segmentation/graph.h"
 
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -19,9 +18,12 @@ AffinityKind parse_affinity(const std::string& text) {
 
 std::string to_string(AffinityKind kind) {
   switch (kind) {
-    case AffinityKind::dihedral: return "dihedral";
-    case AffinityKind::edge_length: return "edge-length";
-    case AffinityKind::cotangent: return "cotangent";
+    case AffinityKind::dihedral:
+      return "dihedral";
+    case AffinityKind::edge_length:
+      return "edge-length";
+    case AffinityKind::cotangent:
+      return "cotangent";
   }
   return "?";
 }
@@ -68,6 +70,7 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
   g.from.resize(m);
   g.to.resize(m);
   g.length.resize(m);
+  g.faces.resize(m);
   g.affinity.resize(m);
   Eigen::VectorXd angular = Eigen::VectorXd::Zero(m), base = Eigen::VectorXd::Ones(m);
   for (int e = 0; e < m; ++e) {
@@ -76,6 +79,7 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
     g.from(e) = i;
     g.to(e) = j;
     g.length(e) = (V.row(i) - V.row(j)).norm();
+    g.faces(e) = static_cast<int>(h1 - h0);
     if (options.kind == AffinityKind::cotangent) {
       double cot = 0.0;
       for (size_t h = h0; h < h1; ++h) {
@@ -93,7 +97,8 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
         // Convex when the second face's far corner lies behind the first face's plane.
         const Eigen::Vector3d d = (V.row(half[h0 + 1].opposite) - V.row(i)).transpose();
         const bool convex = n1.dot(d) <= 0;
-        angular(e) = (convex ? options.convex_weight : 1.0) * (1.0 - std::clamp(n1.dot(n2), -1.0, 1.0));
+        angular(e) =
+            (convex ? options.convex_weight : 1.0) * (1.0 - std::clamp(n1.dot(n2), -1.0, 1.0));
       }
     }
   }

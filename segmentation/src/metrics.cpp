@@ -86,6 +86,10 @@ LabelComparison compare_labels(const Eigen::VectorXi& predicted, const Eigen::Ve
       out.matched[t] = -1;
     }
   }
+  double agreeing = 0;
+  for (int t = 0; t < kt; ++t)
+    if (out.matched[t] >= 0) agreeing += table(t, out.matched[t]);
+  out.agreement = out.compared ? agreeing / out.compared : 0.0;
   int present = 0;
   double sum = 0;
   for (int t = 0; t < kt; ++t)

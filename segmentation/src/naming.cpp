@@ -2,7 +2,6 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -14,8 +13,8 @@ AxesEstimate estimate_axes(const Eigen::MatrixX3d& V, const Eigen::VectorXd& are
                            const Eigen::Vector3d& up_given, const Eigen::Vector3d& forward_given) {
   AxesEstimate axes;
   const double total = area.sum();
-  const Eigen::Vector3d centre =
-      total > 0 ? Eigen::Vector3d((V.transpose() * area) / total) : Eigen::Vector3d(V.colwise().mean());
+  const Eigen::Vector3d centre = total > 0 ? Eigen::Vector3d((V.transpose() * area) / total)
+                                           : Eigen::Vector3d(V.colwise().mean());
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (int i = 0; i < V.rows(); ++i) {
     const Eigen::Vector3d d = V.row(i).transpose() - centre;
@@ -46,7 +45,8 @@ AxesEstimate estimate_axes(const Eigen::MatrixX3d& V, const Eigen::VectorXd& are
     // flat has a zero eigenvalue along up; take the smaller of the two horizontal ones.
     Eigen::Vector3d best = Eigen::Vector3d::Zero();
     for (int k = 0; k < 3 && best.norm() == 0; ++k)
-      if (std::abs(flat.eigenvectors().col(k).dot(axes.up)) < 0.5) best = flat.eigenvectors().col(k);
+      if (std::abs(flat.eigenvectors().col(k).dot(axes.up)) < 0.5)
+        best = flat.eigenvectors().col(k);
     axes.forward = (best - best.dot(axes.up) * axes.up).normalized();
     // Feet point forward: the lowest 4 % of the height lies ahead of the 8–20 % band (the shins).
     const Eigen::VectorXd h = V * axes.up;
@@ -80,8 +80,8 @@ struct PartGeometry {
 };
 
 // Mean position of the vertices of label a that touch label b.
-Eigen::Vector3d attachment(const Eigen::MatrixX3d& V, const MeshGraph& g, const Eigen::VectorXi& labels,
-                           int a, int b) {
+Eigen::Vector3d attachment(const Eigen::MatrixX3d& V, const MeshGraph& g,
+                           const Eigen::VectorXi& labels, int a, int b) {
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   int count = 0;
   for (int e = 0; e < g.num_edges(); ++e) {
@@ -95,8 +95,8 @@ Eigen::Vector3d attachment(const Eigen::MatrixX3d& V, const MeshGraph& g, const 
 double clamp01(double x) { return std::clamp(x, 0.0, 1.0); }
 
 // Orders a pair so that the first lies on the character's left; confidence from the lateral share.
-std::pair<int, int> left_first(int a, int b, const std::vector<PartGeometry>& geo, const AxesEstimate& axes,
-                               double& confidence) {
+std::pair<int, int> left_first(int a, int b, const std::vector<PartGeometry>& geo,
+                               const AxesEstimate& axes, double& confidence) {
   const Eigen::Vector3d d = geo[a].centroid - geo[b].centroid;
   confidence = d.norm() > 0 ? clamp01(std::abs(d.dot(axes.left)) / d.norm()) : 0.0;
   return d.dot(axes.left) >= 0 ? std::make_pair(a, b) : std::make_pair(b, a);
@@ -106,7 +106,8 @@ std::pair<int, int> left_first(int a, int b, const std::vector<PartGeometry>& ge
 
 std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& graph,
                                   const Eigen::VectorXd& area, const Eigen::VectorXi& labels,
-                                  const std::vector<int>& label_component, const AxesEstimate& axes) {
+                                  const std::vector<int>& label_component,
+                                  const AxesEstimate& axes) {
   const int P = static_cast<int>(label_component.size());
   std::vector<PartGeometry> geo(P);
   for (int v = 0; v < labels.size(); ++v) {
@@ -121,7 +122,8 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
   Eigen::MatrixXd touch = Eigen::MatrixXd::Zero(P, P);  // shared edge affinity between labels
   for (int e = 0; e < graph.num_edges(); ++e) {
     const int a = labels(graph.from(e)), b = labels(graph.to(e));
-    if (a >= 0 && b >= 0 && a != b) touch(a, b) += graph.affinity(e), touch(b, a) += graph.affinity(e);
+    if (a >= 0 && b >= 0 && a != b)
+      touch(a, b) += graph.affinity(e), touch(b, a) += graph.affinity(e);
   }
 
   std::vector<NamedPart> parts(P);
@@ -131,7 +133,8 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
     parts[l].vertices = geo[l].vertices;
     parts[l].area = geo[l].area;
   }
-  const int components = P ? *std::max_element(label_component.begin(), label_component.end()) + 1 : 0;
+  const int components =
+      P ? *std::max_element(label_component.begin(), label_component.end()) + 1 : 0;
   for (int c = 0; c < components; ++c) {
     std::vector<int> ls;
     for (int l = 0; l < P; ++l)
@@ -144,31 +147,35 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
     };
     // Hub: the part touching the most others, then the largest.
     const int hub = *std::max_element(ls.begin(), ls.end(), [&](int a, int b) {
-      return std::make_pair(neighbours(a), geo[a].area) < std::make_pair(neighbours(b), geo[b].area);
+      return std::make_pair(neighbours(a), geo[a].area) <
+             std::make_pair(neighbours(b), geo[b].area);
     });
     std::vector<int> limbs;
     for (int l : ls)
       if (l != hub) limbs.push_back(l);
-    const bool star = std::all_of(limbs.begin(), limbs.end(), [&](int l) { return touch(l, hub) > 0; });
+    const bool star =
+        std::all_of(limbs.begin(), limbs.end(), [&](int l) { return touch(l, hub) > 0; });
 
     if (ls.size() == 6 && star) {  // a body
       parts[hub].name = "torso";
       parts[hub].confidence = 1.0;
       std::map<int, Eigen::Vector3d> at;
       for (int l : limbs) at[l] = attachment(V, graph, labels, l, hub);
-      std::sort(limbs.begin(), limbs.end(), [&](int a, int b) { return at[a].dot(axes.up) < at[b].dot(axes.up); });
+      std::sort(limbs.begin(), limbs.end(),
+                [&](int a, int b) { return at[a].dot(axes.up) < at[b].dot(axes.up); });
       // Legs attach lowest; of the other three the head attaches nearest the hub's vertical axis.
       std::vector<int> upper(limbs.begin() + 2, limbs.end());
       auto off_axis = [&](int l) {
         const Eigen::Vector3d d = at[l] - geo[hub].centroid;
         return (d - d.dot(axes.up) * axes.up).norm();
       };
-      std::sort(upper.begin(), upper.end(), [&](int a, int b) { return off_axis(a) < off_axis(b); });
+      std::sort(upper.begin(), upper.end(),
+                [&](int a, int b) { return off_axis(a) < off_axis(b); });
       const int head = upper[0];
       parts[head].name = "head";
       parts[head].confidence = clamp01(1.0 - off_axis(head) / std::max(off_axis(upper[1]), 1e-12));
       const double legs_gap = at[limbs[2]].dot(axes.up) - at[limbs[1]].dot(axes.up);
-      const double legs_span = at[limbs[5]].dot(axes.up) - at[limbs[0]].dot(axes.up);
+      const double legs_span = at[limbs.back()].dot(axes.up) - at[limbs[0]].dot(axes.up);
       const double leg_conf = legs_span > 0 ? clamp01(legs_gap / legs_span * 2) : 0.0;
       double lr = 0;
       auto [ll, lr_leg] = left_first(limbs[0], limbs[1], geo, axes, lr);
@@ -179,8 +186,9 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
       parts[ar] = {"arm_right", parts[head].confidence * lr, c, geo[ar].vertices, geo[ar].area};
       continue;
     }
-    if (ls.size() == 1) {  // one garment part: a skirt widens downwards, anything else is a body
+    if (ls.size() == 1) {  // one garment part: a skirt is a tube (waist, hem) or widens downwards
       const int l = ls[0];
+      const int loops = count_boundary_loops(graph, [&](int v) { return labels(v) == l; });
       double spread[2] = {0, 0}, weight[2] = {0, 0};
       for (int v = 0; v < labels.size(); ++v) {
         if (labels(v) != l) continue;
@@ -189,10 +197,12 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
         spread[half] += area(v) * (d - d.dot(axes.up) * axes.up).norm();
         weight[half] += area(v);
       }
-      const double lower = weight[0] > 0 ? spread[0] / weight[0] : 0, upper = weight[1] > 0 ? spread[1] / weight[1] : 0;
-      const bool skirt = lower > 1.1 * upper;
+      const double lower = weight[0] > 0 ? spread[0] / weight[0] : 0,
+                   upper = weight[1] > 0 ? spread[1] / weight[1] : 0;
+      const bool skirt = loops == 2 || lower > 1.1 * upper;
       parts[l].name = skirt ? "skirt" : "body";
-      parts[l].confidence = clamp01(std::abs(lower - upper) / std::max(lower + upper, 1e-12) * 4);
+      parts[l].confidence =
+          loops == 2 ? 0.8 : clamp01(std::abs(lower - upper) / std::max(lower + upper, 1e-12) * 4);
       continue;
     }
     // A garment with several parts: the hub is the body, legs hang below it, sleeves stick out.

@@ -34,8 +34,8 @@ Eigen::MatrixXd spectral_embedding(const EigenResult& eigen, int dims) {
   return Y;
 }
 
-void clean_up(const MeshGraph& graph, const Adjacency& adj, const Eigen::VectorXd& area, int smoothing,
-              Eigen::VectorXi& labels) {
+void clean_up(const MeshGraph& graph, const Adjacency& adj, const Eigen::VectorXd& area,
+              int smoothing, Eigen::VectorXi& labels) {
   merge_orphan_patches(graph, adj, area, labels);
   smooth_label_boundaries(graph, adj, smoothing, labels);
   merge_orphan_patches(graph, adj, area, labels);
@@ -53,7 +53,9 @@ void compact_labels(Eigen::VectorXi& labels) {
 }
 
 using Clock = std::chrono::steady_clock;
-double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 struct Component {
   std::vector<int> vertices;  // mesh vertex indices
@@ -79,7 +81,8 @@ Eigen::SparseMatrix<double> sub_affinity(const MeshGraph& g, const std::vector<i
 // Number of parts per component from the union of the spectra: every component takes its zero
 // eigenvalue, the other K − C parts go to the smallest remaining eigenvalues. Automatic K: the
 // largest ratio λ_K / λ_{K−1} of the sorted union.
-int choose_parts(std::vector<Component>& comps, const SegmentationOptions& o, SegmentationResult& r) {
+int choose_parts(std::vector<Component>& comps, const SegmentationOptions& o,
+                 SegmentationResult& r) {
   const int C = static_cast<int>(comps.size());
   struct Entry {
     double value;
@@ -96,7 +99,9 @@ int choose_parts(std::vector<Component>& comps, const SegmentationOptions& o, Se
   }
   std::sort(all.begin(), all.end());
   std::sort(rest.begin(), rest.end(), [](const Entry& a, const Entry& b) {
-    return a.value != b.value ? a.value < b.value : a.comp != b.comp ? a.comp < b.comp : a.index < b.index;
+    return a.value != b.value ? a.value < b.value
+           : a.comp != b.comp ? a.comp < b.comp
+                              : a.index < b.index;
   });
   r.spectrum = Eigen::Map<Eigen::VectorXd>(all.data(), static_cast<Eigen::Index>(all.size()));
   const int total = static_cast<int>(all.size());
@@ -120,8 +125,10 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   const auto start = Clock::now();
   validate_mesh(mesh, "mesh");
   if (o.parts < 0)
-    throw InputError("parts: " + std::to_string(o.parts) + " (must be at least 1, or 0 for automatic)");
-  if (o.max_parts < 1) throw InputError("max_parts: " + std::to_string(o.max_parts) + " (must be at least 1)");
+    throw InputError("parts: " + std::to_string(o.parts) +
+                     " (must be at least 1, or 0 for automatic)");
+  if (o.max_parts < 1)
+    throw InputError("max_parts: " + std::to_string(o.max_parts) + " (must be at least 1)");
   SegmentationResult r;
   r.parts_automatic = o.parts == 0;
   const int n = mesh.num_vertices();
@@ -154,11 +161,11 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   const int usable = n - r.isolated_vertices;
   r.components = C;
   if (o.parts > usable)
-    throw InputError("parts: " + std::to_string(o.parts) + " is more than the " + std::to_string(usable) +
-                     " vertices of the mesh");
+    throw InputError("parts: " + std::to_string(o.parts) + " is more than the " +
+                     std::to_string(usable) + " vertices of the mesh");
   if (o.parts > 0 && o.parts < C)
-    throw InputError("parts: " + std::to_string(o.parts) + " is fewer than the " + std::to_string(C) +
-                     " connected components (each needs at least one part)");
+    throw InputError("parts: " + std::to_string(o.parts) + " is fewer than the " +
+                     std::to_string(C) + " connected components (each needs at least one part)");
   r.seconds.graph = since(t);
 
   t = Clock::now();
@@ -189,11 +196,11 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
       for (int v : comp.vertices) labels(v) = base;
       continue;
     }
-    // Candidates: k-means with k, k + 1, …, k + over_segmentation clusters, each cleaned up and merged
-    // back to k parts by structure (merge_parts_towards_star), until one is a star. A candidate
-    // replaces the previous best only with more leaf parts (limbs hanging off a hub): plain k-means
-    // wins ties. (The normalised
-    // cut is no tie-breaker: on the bodies it prefers partitions that are worse against the truth.)
+    // Candidates: k-means with k, k + 1, …, k + over_segmentation clusters, each cleaned up and
+    // merged back to k parts by structure (merge_parts_towards_star), until one is a star. A
+    // candidate replaces the previous best only with more leaf parts (limbs hanging off a hub):
+    // plain k-means wins ties. (The normalised cut is no tie-breaker: on the bodies it prefers
+    // partitions that are worse against the truth.)
     double best_ncut = 0.0;
     int best_leaves = -1;
     Eigen::VectorXi best;
@@ -228,13 +235,15 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
     r.normalized_cut += best_ncut;
     if (relabelled >= 0) r.relabelled_vertices += relabelled;
   }
-    // Compact the labels (a k-means cluster or a patch may have vanished), keeping their order.
+  // Compact the labels (a k-means cluster or a patch may have vanished), keeping their order.
   std::vector<int> compact(label_component.size(), -1);
   std::vector<int> kept_component;
   for (int v = 0; v < n; ++v)
     if (labels(v) >= 0 && compact[labels(v)] < 0) compact[labels(v)] = 0;
   for (size_t l = 0; l < compact.size(); ++l)
-    if (compact[l] == 0) compact[l] = static_cast<int>(kept_component.size()), kept_component.push_back(label_component[l]);
+    if (compact[l] == 0)
+      compact[l] = static_cast<int>(kept_component.size()),
+      kept_component.push_back(label_component[l]);
   for (int v = 0; v < n; ++v)
     if (labels(v) >= 0) labels(v) = compact[labels(v)];
   r.parts_per_component.assign(C, 0);

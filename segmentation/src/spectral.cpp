@@ -1,10 +1,10 @@
 // Spectra is included here only: the public header speaks Eigen.
 #include "dresskit/segmentation/spectral.h"
 
-#include <Eigen/Eigenvalues>
 #include <Spectra/MatOp/SparseSymShiftSolve.h>
 #include <Spectra/SymEigsShiftSolver.h>
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -23,7 +23,8 @@ std::string to_string(LaplacianKind kind) {
   return kind == LaplacianKind::normalized ? "normalized" : "plain";
 }
 
-Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W, LaplacianKind kind) {
+Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W,
+                                            LaplacianKind kind) {
   const Eigen::VectorXd degree = W * Eigen::VectorXd::Ones(W.cols());
   Eigen::SparseMatrix<double> L(W.rows(), W.cols());
   std::vector<Eigen::Triplet<double>> t;
@@ -35,7 +36,8 @@ Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W
     for (Eigen::SparseMatrix<double>::InnerIterator it(W, j); it; ++it)
       t.emplace_back(it.row(), it.col(), -it.value() * scale(it.row()) * scale(it.col()));
   for (int i = 0; i < W.rows(); ++i)
-    t.emplace_back(i, i, kind == LaplacianKind::normalized ? (degree(i) > 0 ? 1.0 : 0.0) : degree(i));
+    t.emplace_back(i, i,
+                   kind == LaplacianKind::normalized ? (degree(i) > 0 ? 1.0 : 0.0) : degree(i));
   L.setFromTriplets(t.begin(), t.end());
   return L;
 }
@@ -86,8 +88,8 @@ EigenResult smallest_eigenpairs(const Eigen::SparseMatrix<double>& L, int nev,
       solver.init();
       solver.compute(Spectra::SortRule::LargestMagn, max_iterations, options.tolerance,
                      Spectra::SortRule::SmallestAlge);
-      tried << (attempt ? "; " : "") << "ncv " << ncv << ", " << max_iterations << " iterations, tol "
-            << options.tolerance << ", shift " << sigma;
+      tried << (attempt ? "; " : "") << "ncv " << ncv << ", " << max_iterations
+            << " iterations, tol " << options.tolerance << ", shift " << sigma;
       if (solver.info() == Spectra::CompInfo::Successful) {
         converged = true;
         result.values = solver.eigenvalues();
@@ -109,7 +111,8 @@ EigenResult smallest_eigenpairs(const Eigen::SparseMatrix<double>& L, int nev,
   // Ascending order; Spectra returns the sort rule's order.
   std::vector<int> order(result.values.size());
   for (int k = 0; k < static_cast<int>(order.size()); ++k) order[k] = k;
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return result.values(a) < result.values(b); });
+  std::sort(order.begin(), order.end(),
+            [&](int a, int b) { return result.values(a) < result.values(b); });
   EigenResult sorted = result;
   for (size_t k = 0; k < order.size(); ++k) {
     sorted.values(k) = result.values(order[k]);

@@ -1,11 +1,10 @@
 #pragma once
-// Ground-truth part labels of the shared data (../shared/data/labels, index = OBJ `v` order), mapped
-// to the names segment_mesh gives. Used by the tests and by bench_segmentation.
+// Ground-truth part labels of the shared data (../shared/data/labels, index = OBJ `v` order),
+// mapped to the names segment_mesh gives. Used by the tests and by bench_segmentation.
 #include <Eigen/Core>
-#include <nlohmann/json.hpp>
-
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
@@ -61,7 +60,8 @@ inline GroundTruth gc_body_truth(const std::string& data_dir, int num_vertices) 
 /// collar) counts as torso.
 inline GroundTruth mh_outfit_truth(const std::string& data_dir, const std::string& key) {
   const auto j = read_json(data_dir + "/labels/mh_clothes_part_labels.json");
-  return truth_from_names(j["labels"][key].get<std::vector<std::string>>(), {{"head_neck", "torso"}},
+  return truth_from_names(j["labels"][key].get<std::vector<std::string>>(),
+                          {{"head_neck", "torso"}},
                           {"torso", "arm_left", "arm_right", "leg_left", "leg_right"});
 }
 

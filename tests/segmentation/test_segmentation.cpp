@@ -48,7 +48,8 @@ TriangleMesh flat_strip(int n) {
 }
 
 // Mesh with the vertices and faces of a and b side by side (b shifted by `offset`).
-TriangleMesh side_by_side(const TriangleMesh& a, const TriangleMesh& b, const Eigen::Vector3d& offset) {
+TriangleMesh side_by_side(const TriangleMesh& a, const TriangleMesh& b,
+                          const Eigen::Vector3d& offset) {
   TriangleMesh m;
   m.V.resize(a.V.rows() + b.V.rows(), 3);
   m.V << a.V, b.V.rowwise() + offset.transpose();
@@ -74,8 +75,9 @@ TEST(SegmentationGraph, EdgesAffinitiesAndComponents) {
 }
 
 TEST(SegmentationGraph, ConcaveFoldWeighsLessThanConvexFold) {
-  // A valley at x = −2 (the surface bends towards its normals: concave) and a ridge of the same angle
-  // at x = 2 (convex): the valley's edge has the lower affinity, and both are below a flat edge.
+  // A valley at x = −2 (the surface bends towards its normals: concave) and a ridge of the same
+  // angle at x = 2 (convex): the valley's edge has the lower affinity, and both are below a flat
+  // edge.
   const TriangleMesh m = strip(12, [](double x) { return std::clamp(x + 2.0, 0.0, 4.0); });
   const MeshGraph g = build_mesh_graph(m.V, m.F);
   auto along = [&](double x) {
@@ -105,7 +107,8 @@ TEST(SegmentationSpectral, PathGraphMatchesClosedForm) {
 }
 
 TEST(SegmentationSpectral, NormalizedLaplacianHasUnitDiagonalAndZeroMode) {
-  const Eigen::SparseMatrix<double> L = graph_laplacian(path_affinity(300), LaplacianKind::normalized);
+  const Eigen::SparseMatrix<double> L =
+      graph_laplacian(path_affinity(300), LaplacianKind::normalized);
   EXPECT_NEAR(L.diagonal().minCoeff(), 1.0, 1e-15);
   const EigenResult r = smallest_eigenpairs(L, 3);
   EXPECT_NEAR(r.values(0), 0.0, 1e-10);
@@ -161,6 +164,7 @@ TEST(SegmentationMetrics, HungarianAndRandIndex) {
   c = compare_labels(pred, truth);
   EXPECT_NEAR(c.mean_iou, 2.0 / 3.0, 1e-12);
   EXPECT_NEAR(c.rand_index, 0.6, 1e-12);
+  EXPECT_NEAR(c.agreement, 0.8, 1e-12);
 }
 
 TEST(SegmentationCleanup, OrphanPatchJoinsItsNeighbourAndFacesFollow) {
@@ -208,18 +212,25 @@ TEST(SegmentationScene, GarmentsPartsAndNames) {
     const TriangleMesh& garment = scene.garments[g];
     const SegmentationResult r = segment_mesh(garment);
     const LabelComparison c = compare_labels(r.vertex_labels, garment.labels);
-    std::printf("%s: %d parts, mean IoU %.3f, 1-Rand %.3f:", to_string(all_garment_kinds()[g]).c_str(),
-                r.parts_chosen, c.mean_iou, 1 - c.rand_index);
+    std::printf(
+        "%s: %d parts, mean IoU %.3f, 1-Rand %.3f:", to_string(all_garment_kinds()[g]).c_str(),
+        r.parts_chosen, c.mean_iou, 1 - c.rand_index);
     for (const auto& p : r.parts) std::printf(" %s", p.name.c_str());
     std::printf("\n");
     EXPECT_GE(c.mean_iou, reached[g]) << to_string(all_garment_kinds()[g]);
   }
+  // A skirt in one part is named by its two boundary loops (waist and hem).
+  SegmentationOptions one;
+  one.parts = 1;
+  EXPECT_EQ(segment_mesh(scene.garments[1], one).parts[0].name, "skirt");
+  EXPECT_EQ(segment_mesh(scene.garments[0], one).parts[0].name, "body");
 }
 
 TEST(SegmentationComponents, EachComponentGetsItsOwnParts) {
   const auto& scene = test::DefaultScene::get();
   // Mannequin and t-shirt apart from each other in one mesh: 6 + 3 parts, never across components.
-  const TriangleMesh both = side_by_side(scene.mannequin, scene.garments[0], Eigen::Vector3d(2, 0, 0));
+  const TriangleMesh both =
+      side_by_side(scene.mannequin, scene.garments[0], Eigen::Vector3d(2, 0, 0));
   SegmentationOptions o;
   o.parts = 9;
   const SegmentationResult r = segment_mesh(both, o);

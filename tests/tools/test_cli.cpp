@@ -266,3 +266,57 @@ TEST(Cli, ThicknessBadInputExits2WithOneLine) {
   EXPECT_EQ(run(dir, "thickness").code, 64);
   EXPECT_EQ(run(dir, "thickness --fabric gray-interlock --composition cotton=1").code, 64);
 }
+
+TEST(Cli, SegmentWritesLabelsInFileOrderColoursAndOnePartPerObj) {
+  DRESSKIT_REQUIRE_DATA();
+  test::TempDir dir;
+  const std::string body = test::data_dir() + "/bodies/mh_woman_young_average.obj";
+  const CliRun r = run(dir, "segment " + body + " --units dm --up +y --parts 6 -o " + dir.file("seg"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("arm_left"), std::string::npos) << r.out;
+  const auto j = nlohmann::json::parse(slurp(dir.file("seg/labels.json")));
+  const auto labels = j["vertex_labels"].get<std::vector<int>>();
+  const auto names = j["part_names"].get<std::vector<std::string>>();
+  // One label per OBJ `v` line, in file order: compare with the ground truth, which is in that order.
+  const auto truth = nlohmann::json::parse(slurp(test::data_dir() + "/labels/mh_body_part_labels.json"))["labels"]
+                         .get<std::vector<std::string>>();
+  ASSERT_EQ(labels.size(), truth.size());
+  int same = 0;
+  for (size_t i = 0; i < labels.size(); ++i)
+    same += labels[i] >= 0 && (names[labels[i]] == truth[i] || (names[labels[i]] == "head" && truth[i] == "head_neck"));
+  EXPECT_GT(same, 0.9 * labels.size());
+  EXPECT_EQ(j["parts"], 6);
+  EXPECT_EQ(j["parts_chosen_by"], "given");
+  EXPECT_LT(j["eigen_residual"].get<double>(), 1e-8);
+  EXPECT_EQ(j["face_labels"].size(), j["faces"].get<size_t>());
+  int part_faces = 0;
+  for (const auto& name : names) {
+    const TriangleMesh part = load_mesh(dir.file("seg/" + name + ".obj"));
+    part_faces += part.num_faces();
+  }
+  EXPECT_EQ(part_faces, j["faces"].get<int>());
+  const TriangleMesh coloured = load_mesh(dir.file("seg/segments.ply"));
+  EXPECT_EQ(coloured.num_vertices(), static_cast<int>(labels.size()));
+}
+
+TEST(Cli, SegmentBadInputExits2WithOneLineAndNoOutput) {
+  test::TempDir dir;
+  save_mesh(fixtures::cube(1.0), dir.file("cube.obj"));
+  write(dir.file("empty.obj"), "");
+  for (const std::string args : {"missing.obj", "empty.obj", "cube.obj --parts 0", "cube.obj --parts 9",
+                                 "cube.obj --affinity nearest", "cube.obj --laplacian weird",
+                                 "cube.obj --max-parts 0", "cube.obj --units furlong"}) {
+    const std::string first = args.substr(0, args.find(' '));
+    const CliRun r = run(dir, "segment " + dir.file(first) + args.substr(first.size()) + " -o " + dir.file("out"));
+    EXPECT_EQ(r.code, 2) << args << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << args;
+  }
+  // A cube in two parts works, and its labels are in the PLY file's order too.
+  save_mesh(fixtures::cube(1.0), dir.file("cube.ply"));
+  const CliRun ok = run(dir, "segment " + dir.file("cube.ply") + " --parts 2 -o " + dir.file("out"));
+  ASSERT_EQ(ok.code, 0) << ok.err;
+  const auto j = nlohmann::json::parse(slurp(dir.file("out/labels.json")));
+  EXPECT_EQ(j["vertex_labels"].size(), 8u);
+  EXPECT_EQ(run(dir, "segment " + dir.file("cube.obj")).code, 64);  // no -o
+}

@@ -1,5 +1,6 @@
 #pragma once
-// Label clean-up on the vertex graph (pure kernels): one connected patch per label, smooth boundaries.
+// Label clean-up on the vertex graph (pure kernels): one connected patch per label, smooth
+// boundaries.
 #include <Eigen/Core>
 
 #include "dresskit/segmentation/graph.h"
@@ -12,17 +13,18 @@ namespace dresskit {
 int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adjacency,
                          const Eigen::VectorXd& vertex_area, Eigen::VectorXi& labels);
 
-/// Boundary smoothing: `iterations` sweeps in which a vertex on a label boundary takes the label with
-/// the largest total affinity among itself (weight: its mean edge affinity) and its neighbours.
-/// Returns the number of label changes.
+/// Boundary smoothing: `iterations` sweeps in which a vertex on a label boundary takes the label
+/// with the largest total affinity among itself (weight: its mean edge affinity) and its
+/// neighbours. Returns the number of label changes.
 int smooth_label_boundaries(const MeshGraph& graph, const Adjacency& adjacency, int iterations,
                             Eigen::VectorXi& labels);
 
 /// Merges adjacent parts until `target` labels remain (labels ≥ 0 of the vector, which must be
-/// 0..q−1 with every label present): each step takes the merge that leaves the most leaf parts (parts
-/// that touch exactly one other part: limbs, sleeves, trouser legs), then the lowest normalised cut.
-/// A body over-segmented into head, chest, belly and limbs thus merges chest and belly, not head and
-/// chest. Relabels to 0..target−1 and returns the number of leaf parts at the end.
+/// 0..q−1 with every label present): each step takes the merge that leaves the most leaf parts
+/// (parts that touch exactly one other part: limbs, sleeves, trouser legs), then the lowest
+/// normalised cut. A body over-segmented into head, chest, belly and limbs thus merges chest and
+/// belly, not head and chest. Relabels to 0..target−1 and returns the number of leaf parts at the
+/// end.
 int merge_parts_towards_star(const MeshGraph& graph, int target, Eigen::VectorXi& labels);
 
 /// Number of leaf parts (touching exactly one other part) of a labelling (labels ≥ 0).

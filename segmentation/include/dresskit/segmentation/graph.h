@@ -3,7 +3,6 @@
 // undirected edge, arrays per attribute.
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-
 #include <string>
 #include <vector>
 
@@ -31,6 +30,7 @@ struct MeshGraph {
   Eigen::VectorXi from, to;  ///< #E endpoints, from < to
   Eigen::VectorXd affinity;  ///< #E affinity w_ij > 0
   Eigen::VectorXd length;    ///< #E edge length [m]
+  Eigen::VectorXi faces;     ///< #E number of triangles at the edge (1 = boundary)
   int num_vertices = 0;
   int num_edges() const { return static_cast<int>(from.size()); }
 };
@@ -48,12 +48,17 @@ Eigen::SparseMatrix<double> affinity_matrix(const MeshGraph& graph);
 /// their own component), numbered in order of their first vertex. Returns the number of components.
 int connected_components(const MeshGraph& graph, Eigen::VectorXi& component);
 
-/// Normalised cut of a labelling: Σ over labels of (affinity leaving the label) / (its total degree).
-/// Vertices labelled −1 are ignored, and so are edges to them.
+/// Normalised cut of a labelling: Σ over labels of (affinity leaving the label) / (its total
+/// degree). Vertices labelled −1 are ignored, and so are edges to them.
 double normalized_cut(const MeshGraph& graph, const Eigen::VectorXi& labels);
 
-/// Vertex adjacency lists (CSR): neighbours of v are adj[start[v] .. start[v+1]), with the edge index
-/// of each in edge.
+/// Number of boundary loops (connected runs of boundary edges) among the edges whose two endpoints
+/// satisfy `inside` (e.g. carry one label).
+template <class Inside>
+int count_boundary_loops(const MeshGraph& graph, Inside inside);
+
+/// Vertex adjacency lists (CSR): neighbours of v are adj[start[v] .. start[v+1]), with the edge
+/// index of each in edge.
 struct Adjacency {
   std::vector<int> start, adj, edge;
 };
@@ -61,5 +66,24 @@ Adjacency adjacency(const MeshGraph& graph);
 
 /// #V lumped vertex areas (a third of each incident triangle) [m²].
 Eigen::VectorXd vertex_areas(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
+
+template <class Inside>
+int count_boundary_loops(const MeshGraph& graph, Inside inside) {
+  std::vector<int> parent(graph.num_vertices, -1);  // −1: not on a boundary edge
+  auto find = [&](int a) {
+    while (parent[a] != a) a = parent[a] = parent[parent[a]];
+    return a;
+  };
+  for (int e = 0; e < graph.num_edges(); ++e) {
+    if (graph.faces(e) != 1 || !inside(graph.from(e)) || !inside(graph.to(e))) continue;
+    for (int v : {graph.from(e), graph.to(e)})
+      if (parent[v] < 0) parent[v] = v;
+    const int a = find(graph.from(e)), b = find(graph.to(e));
+    if (a != b) parent[a] = b;
+  }
+  int loops = 0;
+  for (int v = 0; v < graph.num_vertices; ++v) loops += parent[v] == v;
+  return loops;
+}
 
 }  // namespace dresskit

@@ -2,7 +2,6 @@
 // Segmentation accuracy against ground truth (pure kernels): per-part IoU after the best one-to-one
 // matching of labels (Hungarian) and the Rand index. Vertices whose truth label is −1 are ignored.
 #include <Eigen/Core>
-
 #include <vector>
 
 namespace dresskit {
@@ -12,13 +11,15 @@ struct LabelComparison {
   /// two vertex sets (0 when unmatched).
   std::vector<int> matched;
   std::vector<double> iou;
-  double mean_iou = 0.0;  ///< mean over truth labels (unmatched count as 0)
+  double mean_iou = 0.0;    ///< mean over truth labels (unmatched count as 0)
   double rand_index = 0.0;  ///< fraction of vertex pairs on which both labelings agree
-  int compared = 0;         ///< vertices with a truth label
+  double agreement =
+      0.0;  ///< fraction of compared vertices whose label is the one matched to their truth
+  int compared = 0;  ///< vertices with a truth label
 };
 
-/// Compares predicted labels (−1 = unlabelled, never matched) with truth labels (−1 = ignored); both
-/// of length #V.
+/// Compares predicted labels (−1 = unlabelled, never matched) with truth labels (−1 = ignored);
+/// both of length #V.
 LabelComparison compare_labels(const Eigen::VectorXi& predicted, const Eigen::VectorXi& truth);
 
 /// The assignment of rows to columns that maximises the total score (rows ≤ or ≥ columns);

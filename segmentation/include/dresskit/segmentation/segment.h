@@ -3,7 +3,6 @@
 // One-off use: segment_mesh(mesh, options). Units: metres; the mesh's axes as loaded (+Y up unless
 // the options say otherwise or ask for an estimate).
 #include <Eigen/Core>
-
 #include <string>
 #include <vector>
 
@@ -27,7 +26,7 @@ struct SegmentationOptions {
   /// structure are tried; the partition with the most limb (leaf) parts, then the lowest normalised
   /// cut wins. 0 = classic spectral clustering only.
   int over_segmentation = 2;
-  bool cleanup = true;         ///< one connected patch per part, then boundary smoothing
+  bool cleanup = true;           ///< one connected patch per part, then boundary smoothing
   int smoothing_iterations = 4;  ///< boundary smoothing sweeps
   /// Up and forward (facing) directions of the character; a zero vector = estimate from the mesh
   /// (up: area-weighted PCA; forward: the feet, else the PCA axis of least spread, sign +Z).
@@ -40,12 +39,13 @@ struct AxesEstimate {
   Eigen::Vector3d up = Eigen::Vector3d::UnitY(), forward = Eigen::Vector3d::UnitZ(),
                   left = Eigen::Vector3d::UnitX();
   bool up_given = false, forward_given = false;
-  /// How the forward sign was decided: "given", "feet" or "default +Z"; same for up ("given", "pca").
+  /// How the forward sign was decided: "given", "feet" or "default +Z"; same for up ("given",
+  /// "pca").
   std::string up_source, forward_source;
 };
 
 struct NamedPart {
-  std::string name;         ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt, part_N
+  std::string name;  ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt, part_N
   double confidence = 0.0;  ///< 0–1: how clearly the geometry supports the name
   int component = 0;        ///< connected component the part lies in
   int vertices = 0;
@@ -64,17 +64,17 @@ struct SegmentationResult {
   std::vector<NamedPart> parts;   ///< index = label
   int parts_chosen = 0;
   bool parts_automatic = false;
-  int components = 0;                   ///< connected components with faces
+  int components = 0;  ///< connected components with faces
   std::vector<int> parts_per_component;
-  int isolated_vertices = 0;            ///< vertices without a face (label −1)
-  Eigen::VectorXd spectrum;  ///< sorted union of the components' smallest eigenvalues
-  double eigengap = 0.0;     ///< λ_K / λ_{K−1} of the union spectrum at the chosen K (0 if undefined)
-  double eigen_residual = 0.0;  ///< max ‖L x − λ x‖ over every eigenpair computed
-  int eigen_iterations = 0;     ///< total Lanczos restarts
+  int isolated_vertices = 0;  ///< vertices without a face (label −1)
+  Eigen::VectorXd spectrum;   ///< sorted union of the components' smallest eigenvalues
+  double eigengap = 0.0;  ///< λ_K / λ_{K−1} of the union spectrum at the chosen K (0 if undefined)
+  double eigen_residual = 0.0;    ///< max ‖L x − λ x‖ over every eigenpair computed
+  int eigen_iterations = 0;       ///< total Lanczos restarts
   double kmeans_cost = 0.0;       ///< of the winning embedding (last component with ≥ 2 parts)
   int clusters_before_merge = 0;  ///< k-means clusters of the winning candidate (same component)
-  double normalized_cut = 0.0;   ///< Σ over parts of cut / volume, summed over the components
-  int relabelled_vertices = 0;  ///< vertices changed by the clean-up (candidates without merging)
+  double normalized_cut = 0.0;    ///< Σ over parts of cut / volume, summed over the components
+  int relabelled_vertices = 0;    ///< vertices changed by the clean-up (candidates without merging)
   AxesEstimate axes;
   SegmentationTimings seconds;
 
@@ -82,8 +82,8 @@ struct SegmentationResult {
 };
 
 /// Segments the mesh. Throws InputError for an unusable mesh or option (no faces, parts < 0, more
-/// parts than vertices, fewer parts than components) and EigenSolverError when the eigen-solver does
-/// not converge (the message says what was tried).
+/// parts than vertices, fewer parts than components) and EigenSolverError when the eigen-solver
+/// does not converge (the message says what was tried).
 SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& options = {});
 
 }  // namespace dresskit

@@ -2,7 +2,6 @@
 // The smallest eigenpairs of a graph Laplacian (Spectra, shift-invert; Spectra stays private).
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
-
 #include <stdexcept>
 #include <string>
 
@@ -17,8 +16,8 @@ LaplacianKind parse_laplacian(const std::string& text);
 std::string to_string(LaplacianKind kind);
 
 struct EigenOptions {
-  double tolerance = 1e-10;  ///< Spectra's relative tolerance on the Ritz values
-  int ncv = 0;               ///< Krylov subspace size; 0 = max(2·nev + 1, 20), at most #V
+  double tolerance = 1e-10;   ///< Spectra's relative tolerance on the Ritz values
+  int ncv = 0;                ///< Krylov subspace size; 0 = max(2·nev + 1, 20), at most #V
   int max_iterations = 1000;  ///< restarts of the implicitly restarted Lanczos method
   /// σ of the shift-invert, relative to the mean diagonal of L: the Laplacian is singular at 0, so
   /// σ < 0 keeps L − σI invertible (see ../shared/docs/pitfalls.md).
@@ -42,7 +41,8 @@ class EigenSolverError : public std::runtime_error {
 };
 
 /// The Laplacian of the symmetric affinity matrix W (#V×#V, zero diagonal, no empty rows).
-Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W, LaplacianKind kind);
+Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W,
+                                            LaplacianKind kind);
 
 /// The nev smallest eigenpairs of the symmetric positive semi-definite L. Tries the options' ncv,
 /// then twice the subspace and iterations; throws EigenSolverError listing what was tried.
