@@ -127,6 +127,11 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   if (o.parts < 0)
     throw InputError("parts: " + std::to_string(o.parts) +
                      " (must be at least 1, or 0 for automatic)");
+  // The eigen-solver needs about 2·K vectors of #V numbers: K in the hundreds is not segmentation
+  // into parts any more and would take minutes and gigabytes.
+  if (o.parts > kMaxParts || o.max_parts > kMaxParts)
+    throw InputError("parts: " + std::to_string(std::max(o.parts, o.max_parts)) + " is more than " +
+                     std::to_string(kMaxParts) + ", the most this segmentation handles");
   if (o.max_parts < 1)
     throw InputError("max_parts: " + std::to_string(o.max_parts) + " (must be at least 1)");
   SegmentationResult r;
@@ -248,6 +253,7 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
     if (labels(v) >= 0) labels(v) = compact[labels(v)];
   r.parts_per_component.assign(C, 0);
   for (int c : kept_component) ++r.parts_per_component[c];
+  r.parts_chosen = static_cast<int>(kept_component.size());  // a k-means cluster can come out empty
   r.seconds.clustering = since(t);
 
   t = Clock::now();

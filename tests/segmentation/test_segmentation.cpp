@@ -248,6 +248,12 @@ TEST(SegmentationBadInput, ClearErrorsOrDocumentedFallbacks) {
   EXPECT_THROW(segment_mesh(cube, o), InputError);
   o.parts = -1;
   EXPECT_THROW(segment_mesh(cube, o), InputError);
+  o.parts = kMaxParts + 1;
+  EXPECT_THROW(segment_mesh(test::DefaultScene::get().mannequin, o), InputError);
+  o.parts = 8;  // as many parts as vertices: one each
+  const SegmentationResult each = segment_mesh(cube, o);
+  EXPECT_EQ(each.parts_chosen, 8);
+  EXPECT_EQ(each.vertex_labels.maxCoeff(), 7);
   o.parts = 1;  // fewer parts than the two components
   EXPECT_THROW(segment_mesh(side_by_side(cube, cube, Eigen::Vector3d(3, 0, 0)), o), InputError);
   TriangleMesh no_faces = cube;

@@ -13,6 +13,9 @@
 
 namespace dresskit {
 
+/// The largest number of parts (given or automatic) that segment_mesh accepts.
+constexpr int kMaxParts = 64;
+
 struct SegmentationOptions {
   /// Total number of parts over all connected components; 0 = chosen by the largest eigengap of the
   /// union of the components' spectra, between #components + 1 and max_parts.
@@ -62,7 +65,7 @@ struct SegmentationResult {
   Eigen::VectorXi vertex_labels;  ///< #V part index per vertex, −1 for vertices without a face
   Eigen::VectorXi face_labels;    ///< #F part index per face
   std::vector<NamedPart> parts;   ///< index = label
-  int parts_chosen = 0;
+  int parts_chosen = 0;  ///< parts in the result (the number asked for unless a cluster came out empty)
   bool parts_automatic = false;
   int components = 0;  ///< connected components with faces
   std::vector<int> parts_per_component;
@@ -82,7 +85,7 @@ struct SegmentationResult {
 };
 
 /// Segments the mesh. Throws InputError for an unusable mesh or option (no faces, parts < 0, more
-/// parts than vertices, fewer parts than components) and EigenSolverError when the eigen-solver
+/// parts than vertices or than kMaxParts, fewer parts than components) and EigenSolverError when the eigen-solver
 /// does not converge (the message says what was tried).
 SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& options = {});
 
