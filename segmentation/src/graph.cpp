@@ -48,11 +48,13 @@ Eigen::Vector3d face_normal(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F
 MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                            const AffinityOptions& options) {
   const long long n = V.rows();
-  std::vector<HalfEdge> half(3 * static_cast<size_t>(F.rows()));
+  std::vector<HalfEdge> half;
+  half.reserve(3 * static_cast<size_t>(F.rows()));
   for (int f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
       const long long a = F(f, c), b = F(f, (c + 1) % 3);
-      half[3 * f + c] = {std::min(a, b) * n + std::max(a, b), f, F(f, (c + 2) % 3)};
+      if (a != b)  // a face with a repeated corner has no edge there
+        half.push_back({std::min(a, b) * n + std::max(a, b), f, F(f, (c + 2) % 3)});
     }
   std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.key != y.key ? x.key < y.key : x.face < y.face;

@@ -278,6 +278,19 @@ TEST(SegmentationBadInput, ClearErrorsOrDocumentedFallbacks) {
   EXPECT_EQ(d.parts_chosen, 2);
   EXPECT_GE(d.vertex_labels.minCoeff(), 0);
 
+  // A face with a repeated corner adds no self-loop; a face (a, a, a) is a component of one vertex.
+  TriangleMesh repeated = cube;
+  repeated.F.conservativeResize(cube.F.rows() + 1, 3);
+  repeated.F.row(cube.F.rows()) << 0, 0, 1;
+  EXPECT_EQ(build_mesh_graph(repeated.V, repeated.F).num_edges(), 18);
+  TriangleMesh lone = isolated;
+  lone.F.conservativeResize(cube.F.rows() + 1, 3);
+  lone.F.row(cube.F.rows()) << 8, 8, 8;
+  o.parts = 3;
+  const SegmentationResult l = segment_mesh(lone, o);
+  EXPECT_EQ(l.components, 2);
+  EXPECT_GE(l.vertex_labels(8), 0);
+
   // One part: everything in it.
   o.parts = 1;
   const SegmentationResult one = segment_mesh(cube, o);

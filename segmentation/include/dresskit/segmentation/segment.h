@@ -65,7 +65,8 @@ struct SegmentationResult {
   Eigen::VectorXi vertex_labels;  ///< #V part index per vertex, −1 for vertices without a face
   Eigen::VectorXi face_labels;    ///< #F part index per face
   std::vector<NamedPart> parts;   ///< index = label
-  int parts_chosen = 0;  ///< parts in the result (the number asked for unless a cluster came out empty)
+  int parts_chosen =
+      0;  ///< parts in the result (the number asked for unless a cluster came out empty)
   bool parts_automatic = false;
   int components = 0;  ///< connected components with faces
   std::vector<int> parts_per_component;
@@ -85,8 +86,8 @@ struct SegmentationResult {
 };
 
 /// Segments the mesh. Throws InputError for an unusable mesh or option (no faces, parts < 0, more
-/// parts than vertices or than kMaxParts, fewer parts than components) and EigenSolverError when the eigen-solver
-/// does not converge (the message says what was tried).
+/// parts than vertices or than kMaxParts, fewer parts than components) and EigenSolverError when
+/// the eigen-solver does not converge (the message says what was tried).
 SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& options = {});
 
 }  // namespace dresskit
