@@ -8,6 +8,8 @@
 #include <map>
 
 #include "dresskit/mesh/io.h"
+#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/graph.h"
 #include "dresskit/segmentation/metrics.h"
 #include "dresskit/segmentation/segment.h"
 #include "ground_truth.h"
@@ -51,6 +53,17 @@ LabelComparison report(const std::string& what, const Eigen::VectorXi& predicted
     std::printf(" %s %.3f", truth.names[t].c_str(), c.iou[t]);
   std::printf("\n");
   return c;
+}
+
+// Every part is one connected patch: the orphan-patch pass finds nothing to move.
+void expect_one_patch_per_part(const TriangleMesh& mesh, const SegmentationResult& r) {
+  const MeshGraph g = build_mesh_graph(mesh.V, mesh.F);
+  Eigen::VectorXi labels = r.vertex_labels;
+  EXPECT_EQ(merge_orphan_patches(g, adjacency(g), vertex_areas(mesh.V, mesh.F), labels), 0);
+  for (const NamedPart& p : r.parts) {
+    EXPECT_GE(p.confidence, 0.0) << p.name;
+    EXPECT_LE(p.confidence, 1.0) << p.name;
+  }
 }
 
 SegmentationOptions body_options(bool given_axes) {
@@ -107,6 +120,7 @@ TEST_P(GarmentCodeBody, MeanIouAndNames) {
         report(GetParam() + (given ? "" : " (axes estimated)"), merged, truth, r);
     EXPECT_GE(c.mean_iou, 0.85);
     EXPECT_LE(1.0 - c.rand_index, 0.10);
+    expect_one_patch_per_part(mesh, r);
     for (size_t t = 0; t < truth.names.size(); ++t)
       EXPECT_EQ(majority_name(r, merged, truth, static_cast<int>(t)), truth.names[t]) << given;
   }
