@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -33,6 +35,13 @@ Eigen::Vector3d axis_vector(UpAxis axis) {
       return -Eigen::Vector3d::UnitZ();
   }
   return Eigen::Vector3d::Zero();
+}
+
+bool is_obj(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj";
 }
 
 json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -143,7 +152,9 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"clustering", r.seconds.clustering},
         {"naming", r.seconds.naming},
         {"total", r.seconds.total}}},
-      {"vertex_labels_order", "input file vertex order (OBJ v lines)"},
+      {"vertex_labels_order",
+       is_obj(path) ? "the OBJ file's v lines"
+                    : "the loader's vertex order (assimp, identical positions joined)"},
       {"vertex_labels", file_labels},
       {"face_labels_order", "triangles of the loaded mesh (a quad a-b-c-d is a-b-c, a-c-d)"},
       {"face_labels",
