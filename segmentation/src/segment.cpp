@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/segmentation/cleanup.h"
@@ -50,6 +51,29 @@ void compact_labels(Eigen::VectorXi& labels) {
   for (auto& [label, k] : index) k = next++;
   for (int i = 0; i < labels.size(); ++i)
     if (labels(i) >= 0) labels(i) = index[labels(i)];
+}
+
+// Labels in a fixed order of names within each component (torso, head, arm_left, …, body,
+// sleeve_left, …), so that a part has the same label, and colour, from mesh to mesh.
+void order_parts(std::vector<NamedPart>& parts, Eigen::VectorXi& labels) {
+  static const std::vector<std::string> order = {
+      "torso",     "head", "arm_left",    "arm_right",    "leg_left",
+      "leg_right", "body", "sleeve_left", "sleeve_right", "skirt"};
+  auto rank = [&](const NamedPart& p) {
+    const auto it = std::find(order.begin(), order.end(), p.name);
+    return std::make_tuple(p.component, static_cast<int>(it - order.begin()), p.name);
+  };
+  std::vector<int> by(parts.size());
+  for (size_t k = 0; k < by.size(); ++k) by[k] = static_cast<int>(k);
+  std::stable_sort(by.begin(), by.end(),
+                   [&](int a, int b) { return rank(parts[a]) < rank(parts[b]); });
+  std::vector<int> new_label(parts.size());
+  std::vector<NamedPart> sorted;
+  for (size_t k = 0; k < by.size(); ++k)
+    new_label[by[k]] = static_cast<int>(k), sorted.push_back(parts[by[k]]);
+  parts = sorted;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) labels(i) = new_label[labels(i)];
 }
 
 using Clock = std::chrono::steady_clock;
@@ -259,6 +283,7 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   t = Clock::now();
   r.axes = estimate_axes(mesh.V, area, o.up, o.forward);
   r.parts = name_parts(mesh.V, graph, area, labels, kept_component, r.axes);
+  order_parts(r.parts, labels);
   std::map<std::string, int> seen;  // names are unique in a mesh: body, body_2, …
   for (auto& p : r.parts)
     if (++seen[p.name] > 1) p.name += "_" + std::to_string(seen[p.name]);

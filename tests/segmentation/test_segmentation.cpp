@@ -196,6 +196,9 @@ TEST(SegmentationScene, MannequinPartsAndNames) {
     ASSERT_GE(c.matched[t], 0);
     EXPECT_EQ(r.parts[c.matched[t]].name, want);
   }
+  // Labels in the fixed order of names, so that colours match from mesh to mesh.
+  EXPECT_EQ(r.part_names(), (std::vector<std::string>{"torso", "head", "arm_left", "arm_right",
+                                                      "leg_left", "leg_right"}));
   EXPECT_GT(r.axes.up.y(), 0.95);  // estimated
   EXPECT_GT(r.axes.forward.z(), 0.95) << r.axes.forward_source;
   EXPECT_LT(r.eigen_residual, 1e-8);
