@@ -49,8 +49,10 @@ LabelComparison report(const std::string& what, const Eigen::VectorXi& predicted
   const LabelComparison c = compare_labels(predicted, truth.labels);
   std::printf("ACCURACY %-34s mean IoU %.3f  1-Rand %.3f  K=%d  %.0f ms |", what.c_str(),
               c.mean_iou, 1.0 - c.rand_index, r.parts_chosen, r.seconds.total * 1e3);
-  for (size_t t = 0; t < truth.names.size(); ++t)
-    std::printf(" %s %.3f", truth.names[t].c_str(), c.iou[t]);
+  // c.iou has one entry per truth label up to the largest present; absent parts are not printed.
+  for (size_t t = 0; t < c.iou.size(); ++t)
+    if ((truth.labels.array() == static_cast<int>(t)).any())
+      std::printf(" %s %.3f", truth.names[t].c_str(), c.iou[t]);
   std::printf("\n");
   return c;
 }
