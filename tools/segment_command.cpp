@@ -144,6 +144,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"ncv", o.eigen.ncv},
         {"kmeans_restarts", o.kmeans.restarts},
         {"over_segmentation", o.over_segmentation},
+        {"bridge_gaps", o.bridge_gaps},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
       {"seconds",
@@ -241,6 +242,7 @@ int SegmentCommand::run() {
   if (command->count("--up")) options.up = Eigen::Vector3d::UnitY();  // the loader turned it to +Y
   if (!forward.empty()) options.forward = axis_vector(parse_up_axis(forward));
   if (!(options.eigen.tolerance > 0)) throw InputError("--tolerance: must be positive");
+  if (!(options.bridge_gaps >= 0)) throw InputError("--bridge-gaps: must be 0 or more");
 
   const TriangleMesh mesh = load_mesh(path, load);
   SegmentationResult r;

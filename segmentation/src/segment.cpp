@@ -163,7 +163,9 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   const int n = mesh.num_vertices();
 
   auto t = Clock::now();
-  const MeshGraph graph = build_mesh_graph(mesh.V, mesh.F, o.affinity);
+  MeshGraph graph = build_mesh_graph(mesh.V, mesh.F, o.affinity);
+  if (o.bridge_gaps > 0 && graph.num_edges() > 0)
+    r.bridged_edges = bridge_boundary_gaps(mesh.V, o.bridge_gaps * graph.length.mean(), 6, graph);
   const Eigen::VectorXd area = vertex_areas(mesh.V, mesh.F);
   Eigen::VectorXi component;
   const int raw_components = connected_components(graph, component);

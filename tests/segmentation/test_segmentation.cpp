@@ -90,6 +90,28 @@ TEST(SegmentationGraph, ConcaveFoldWeighsLessThanConvexFold) {
   EXPECT_LT(along(-2), 0.5 * along(-4));
 }
 
+TEST(SegmentationGraph, BridgesASlitButNotTwoComponents) {
+  // A strip rolled into a tube that is open along a slit as wide as one edge: bridging joins the
+  // slit's two edges; two such tubes side by side are never joined to each other.
+  const int n = 24;
+  TriangleMesh tube = strip(n, [](double) { return 0.0; });
+  const double radius = (n + 1) / (2 * M_PI);  // the slit is about one edge wide
+  for (int v = 0; v < tube.num_vertices(); ++v) {
+    const double angle = (tube.V(v, 0) + n / 2.0) / radius;
+    tube.V.row(v) << radius * std::cos(angle), tube.V(v, 1), radius * std::sin(angle);
+  }
+  MeshGraph g = build_mesh_graph(tube.V, tube.F);
+  EXPECT_EQ(bridge_boundary_gaps(tube.V, 1.5, 6, g), 4);  // two across the slit, two diagonals
+  MeshGraph none = build_mesh_graph(tube.V, tube.F);
+  EXPECT_EQ(bridge_boundary_gaps(tube.V, 0.5, 6, none), 0);  // narrower than the slit
+
+  const TriangleMesh two = side_by_side(tube, tube, Eigen::Vector3d(0, 1.2, 0));
+  MeshGraph g2 = build_mesh_graph(two.V, two.F);
+  EXPECT_EQ(bridge_boundary_gaps(two.V, 1.5, 6, g2), 8);
+  Eigen::VectorXi comp;
+  EXPECT_EQ(connected_components(g2, comp), 2);
+}
+
 TEST(SegmentationSpectral, PathGraphMatchesClosedForm) {
   // Plain Laplacian of a path with n vertices: λ_k = 2 − 2 cos(π k / n).
   const int n = 400;

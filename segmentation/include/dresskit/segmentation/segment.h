@@ -22,6 +22,9 @@ struct SegmentationOptions {
   int parts = 0;
   int max_parts = 8;  ///< upper bound of the automatic choice
   AffinityOptions affinity;
+  /// Boundary vertices of one component closer than this many mean edge lengths, and more than six
+  /// edges apart, are joined (bridge_boundary_gaps: a blouse's open front); 0 = off.
+  double bridge_gaps = 2.0;
   LaplacianKind laplacian = LaplacianKind::normalized;
   EigenOptions eigen;
   KMeansOptions kmeans;
@@ -71,6 +74,7 @@ struct SegmentationResult {
   int components = 0;  ///< connected components with faces
   std::vector<int> parts_per_component;
   int isolated_vertices = 0;  ///< vertices without a face (label −1)
+  int bridged_edges = 0;      ///< edges added across boundary gaps
   Eigen::VectorXd spectrum;   ///< sorted union of the components' smallest eigenvalues
   double eigengap = 0.0;  ///< λ_K / λ_{K−1} of the union spectrum at the chosen K (0 if undefined)
   double eigen_residual = 0.0;    ///< max ‖L x − λ x‖ over every eigenpair computed
