@@ -126,6 +126,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"eigen_residual", r.eigen_residual},
       {"eigen_iterations", r.eigen_iterations},
       {"isolated_vertices", r.isolated_vertices},
+      {"bridged_edges", r.bridged_edges},
       {"duplicate_vertices_labelled", duplicates},
       {"relabelled_by_cleanup", r.relabelled_vertices},
       {"normalized_cut", r.normalized_cut},
@@ -220,6 +221,10 @@ void SegmentCommand::add_to(CLI::App& app) {
   command->add_option("--tolerance", options.eigen.tolerance, "eigen-solver tolerance")
       ->capture_default_str();
   command->add_option("--ncv", options.eigen.ncv, "eigen-solver subspace size (0: automatic)")
+      ->capture_default_str();
+  command
+      ->add_option("--bridge-gaps", options.bridge_gaps,
+                   "join boundary vertices closer than this many mean edge lengths (0: off)")
       ->capture_default_str();
   command
       ->add_option("--over-segmentation", options.over_segmentation,
