@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -33,6 +35,13 @@ Eigen::Vector3d axis_vector(UpAxis axis) {
       return -Eigen::Vector3d::UnitZ();
   }
   return Eigen::Vector3d::Zero();
+}
+
+bool is_obj(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return std::tolower(c); });
+  return ext == ".obj";
 }
 
 json vec(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
@@ -117,6 +126,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"eigen_residual", r.eigen_residual},
       {"eigen_iterations", r.eigen_iterations},
       {"isolated_vertices", r.isolated_vertices},
+      {"bridged_edges", r.bridged_edges},
       {"duplicate_vertices_labelled", duplicates},
       {"relabelled_by_cleanup", r.relabelled_vertices},
       {"normalized_cut", r.normalized_cut},
@@ -135,6 +145,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"ncv", o.eigen.ncv},
         {"kmeans_restarts", o.kmeans.restarts},
         {"over_segmentation", o.over_segmentation},
+        {"bridge_gaps", o.bridge_gaps},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
       {"seconds",
@@ -143,7 +154,9 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"clustering", r.seconds.clustering},
         {"naming", r.seconds.naming},
         {"total", r.seconds.total}}},
-      {"vertex_labels_order", "input file vertex order (OBJ v lines)"},
+      {"vertex_labels_order",
+       is_obj(path) ? "the OBJ file's v lines"
+                    : "the loader's vertex order (assimp, identical positions joined)"},
       {"vertex_labels", file_labels},
       {"face_labels_order", "triangles of the loaded mesh (a quad a-b-c-d is a-b-c, a-c-d)"},
       {"face_labels",
@@ -210,6 +223,10 @@ void SegmentCommand::add_to(CLI::App& app) {
   command->add_option("--ncv", options.eigen.ncv, "eigen-solver subspace size (0: automatic)")
       ->capture_default_str();
   command
+      ->add_option("--bridge-gaps", options.bridge_gaps,
+                   "join boundary vertices closer than this many mean edge lengths (0: off)")
+      ->capture_default_str();
+  command
       ->add_option("--over-segmentation", options.over_segmentation,
                    "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)")
       ->capture_default_str();
@@ -230,6 +247,7 @@ int SegmentCommand::run() {
   if (command->count("--up")) options.up = Eigen::Vector3d::UnitY();  // the loader turned it to +Y
   if (!forward.empty()) options.forward = axis_vector(parse_up_axis(forward));
   if (!(options.eigen.tolerance > 0)) throw InputError("--tolerance: must be positive");
+  if (!(options.bridge_gaps >= 0)) throw InputError("--bridge-gaps: must be 0 or more");
 
   const TriangleMesh mesh = load_mesh(path, load);
   SegmentationResult r;

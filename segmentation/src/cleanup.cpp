@@ -79,6 +79,9 @@ int smooth_label_boundaries(const MeshGraph& graph, const Adjacency& adj, int it
   const int n = graph.num_vertices;
   int changes = 0;
   std::map<int, double> vote;
+  std::map<int, int> count;  // vertices per label: smoothing never empties a label
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0) ++count[labels(v)];
   for (int it = 0; it < iterations; ++it) {
     Eigen::VectorXi next = labels;
     int changed = 0;
@@ -99,8 +102,10 @@ int smooth_label_boundaries(const MeshGraph& graph, const Adjacency& adj, int it
       const int best = std::max_element(vote.begin(), vote.end(), [](const auto& x, const auto& y) {
                          return x.second < y.second;
                        })->first;
-      if (best != labels(v)) {
+      if (best != labels(v) && count[labels(v)] > 1) {
         next(v) = best;
+        --count[labels(v)];
+        ++count[best];
         ++changed;
       }
     }

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <utility>
 
 #include "dresskit/mesh/errors.h"
 
@@ -48,11 +49,13 @@ Eigen::Vector3d face_normal(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F
 MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                            const AffinityOptions& options) {
   const long long n = V.rows();
-  std::vector<HalfEdge> half(3 * static_cast<size_t>(F.rows()));
+  std::vector<HalfEdge> half;
+  half.reserve(3 * static_cast<size_t>(F.rows()));
   for (int f = 0; f < F.rows(); ++f)
     for (int c = 0; c < 3; ++c) {
       const long long a = F(f, c), b = F(f, (c + 1) % 3);
-      half[3 * f + c] = {std::min(a, b) * n + std::max(a, b), f, F(f, (c + 2) % 3)};
+      if (a != b)  // a face with a repeated corner has no edge there
+        half.push_back({std::min(a, b) * n + std::max(a, b), f, F(f, (c + 2) % 3)});
     }
   std::sort(half.begin(), half.end(), [](const HalfEdge& x, const HalfEdge& y) {
     return x.key != y.key ? x.key < y.key : x.face < y.face;
@@ -115,6 +118,60 @@ MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
   for (int e = 0; e < m; ++e)
     g.affinity(e) = base(e) * (mean_angular > 0 ? std::exp(-angular(e) / mean_angular) : 1.0);
   return g;
+}
+
+int bridge_boundary_gaps(const Eigen::MatrixX3d& V, double max_distance, int min_hops,
+                         MeshGraph& graph) {
+  std::vector<int> boundary;
+  std::vector<char> on_boundary(graph.num_vertices, 0);
+  for (int e = 0; e < graph.num_edges(); ++e)
+    if (graph.faces(e) == 1) on_boundary[graph.from(e)] = on_boundary[graph.to(e)] = 1;
+  for (int v = 0; v < graph.num_vertices; ++v)
+    if (on_boundary[v]) boundary.push_back(v);
+  if (boundary.empty() || !(max_distance > 0)) return 0;
+  Eigen::VectorXi component;
+  connected_components(graph, component);
+  const Adjacency adj = adjacency(graph);
+  // Vertices within min_hops of v (breadth-first, depth-limited).
+  std::vector<int> depth(graph.num_vertices, -1), touched;
+  auto near_on_graph = [&](int v) {
+    for (int t : touched) depth[t] = -1;
+    touched.assign(1, v);
+    depth[v] = 0;
+    for (size_t k = 0; k < touched.size(); ++k) {
+      const int u = touched[k];
+      if (depth[u] == min_hops) continue;
+      for (int a = adj.start[u]; a < adj.start[u + 1]; ++a)
+        if (depth[adj.adj[a]] < 0) depth[adj.adj[a]] = depth[u] + 1, touched.push_back(adj.adj[a]);
+    }
+  };
+  // Boundary vertices sorted along x: candidates of v lie within max_distance in x.
+  std::sort(boundary.begin(), boundary.end(), [&](int a, int b) { return V(a, 0) < V(b, 0); });
+  std::vector<std::pair<int, int>> added;
+  for (size_t i = 0; i < boundary.size(); ++i) {
+    const int v = boundary[i];
+    bool searched = false;
+    for (size_t j = i + 1; j < boundary.size() && V(boundary[j], 0) - V(v, 0) < max_distance; ++j) {
+      const int w = boundary[j];
+      if (component(v) != component(w) || (V.row(v) - V.row(w)).norm() >= max_distance) continue;
+      if (!searched) near_on_graph(v), searched = true;
+      if (depth[w] < 0) added.emplace_back(std::min(v, w), std::max(v, w));
+    }
+  }
+  if (added.empty()) return 0;
+  const int m = graph.num_edges(), extra = static_cast<int>(added.size());
+  const double mean_affinity = graph.affinity.mean();
+  for (Eigen::VectorXi* a : {&graph.from, &graph.to, &graph.faces})
+    a->conservativeResize(m + extra);
+  for (Eigen::VectorXd* a : {&graph.affinity, &graph.length}) a->conservativeResize(m + extra);
+  for (int k = 0; k < extra; ++k) {
+    graph.from(m + k) = added[k].first;
+    graph.to(m + k) = added[k].second;
+    graph.faces(m + k) = 0;  // no triangle: not a boundary edge, not an interior one
+    graph.affinity(m + k) = mean_affinity;
+    graph.length(m + k) = (V.row(added[k].first) - V.row(added[k].second)).norm();
+  }
+  return extra;
 }
 
 Eigen::SparseMatrix<double> affinity_matrix(const MeshGraph& graph) {

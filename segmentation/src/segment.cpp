@@ -7,6 +7,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <tuple>
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/segmentation/cleanup.h"
@@ -50,6 +51,29 @@ void compact_labels(Eigen::VectorXi& labels) {
   for (auto& [label, k] : index) k = next++;
   for (int i = 0; i < labels.size(); ++i)
     if (labels(i) >= 0) labels(i) = index[labels(i)];
+}
+
+// Labels in a fixed order of names within each component (torso, head, arm_left, …, body,
+// sleeve_left, …), so that a part has the same label, and colour, from mesh to mesh.
+void order_parts(std::vector<NamedPart>& parts, Eigen::VectorXi& labels) {
+  static const std::vector<std::string> order = {
+      "torso",     "head", "arm_left",    "arm_right",    "leg_left",
+      "leg_right", "body", "sleeve_left", "sleeve_right", "skirt"};
+  auto rank = [&](const NamedPart& p) {
+    const auto it = std::find(order.begin(), order.end(), p.name);
+    return std::make_tuple(p.component, static_cast<int>(it - order.begin()), p.name);
+  };
+  std::vector<int> by(parts.size());
+  for (size_t k = 0; k < by.size(); ++k) by[k] = static_cast<int>(k);
+  std::stable_sort(by.begin(), by.end(),
+                   [&](int a, int b) { return rank(parts[a]) < rank(parts[b]); });
+  std::vector<int> new_label(parts.size());
+  std::vector<NamedPart> sorted;
+  for (size_t k = 0; k < by.size(); ++k)
+    new_label[by[k]] = static_cast<int>(k), sorted.push_back(parts[by[k]]);
+  parts = sorted;
+  for (int i = 0; i < labels.size(); ++i)
+    if (labels(i) >= 0) labels(i) = new_label[labels(i)];
 }
 
 using Clock = std::chrono::steady_clock;
@@ -127,6 +151,11 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   if (o.parts < 0)
     throw InputError("parts: " + std::to_string(o.parts) +
                      " (must be at least 1, or 0 for automatic)");
+  // The eigen-solver needs about 2·K vectors of #V numbers: K in the hundreds is not segmentation
+  // into parts any more and would take minutes and gigabytes.
+  if (o.parts > kMaxParts || o.max_parts > kMaxParts)
+    throw InputError("parts: " + std::to_string(std::max(o.parts, o.max_parts)) + " is more than " +
+                     std::to_string(kMaxParts) + ", the most this segmentation handles");
   if (o.max_parts < 1)
     throw InputError("max_parts: " + std::to_string(o.max_parts) + " (must be at least 1)");
   SegmentationResult r;
@@ -134,7 +163,9 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   const int n = mesh.num_vertices();
 
   auto t = Clock::now();
-  const MeshGraph graph = build_mesh_graph(mesh.V, mesh.F, o.affinity);
+  MeshGraph graph = build_mesh_graph(mesh.V, mesh.F, o.affinity);
+  if (o.bridge_gaps > 0 && graph.num_edges() > 0)
+    r.bridged_edges = bridge_boundary_gaps(mesh.V, o.bridge_gaps * graph.length.mean(), 6, graph);
   const Eigen::VectorXd area = vertex_areas(mesh.V, mesh.F);
   Eigen::VectorXi component;
   const int raw_components = connected_components(graph, component);
@@ -248,11 +279,13 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
     if (labels(v) >= 0) labels(v) = compact[labels(v)];
   r.parts_per_component.assign(C, 0);
   for (int c : kept_component) ++r.parts_per_component[c];
+  r.parts_chosen = static_cast<int>(kept_component.size());  // a k-means cluster can come out empty
   r.seconds.clustering = since(t);
 
   t = Clock::now();
   r.axes = estimate_axes(mesh.V, area, o.up, o.forward);
   r.parts = name_parts(mesh.V, graph, area, labels, kept_component, r.axes);
+  order_parts(r.parts, labels);
   std::map<std::string, int> seen;  // names are unique in a mesh: body, body_2, …
   for (auto& p : r.parts)
     if (++seen[p.name] > 1) p.name += "_" + std::to_string(seen[p.name]);

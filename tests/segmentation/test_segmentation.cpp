@@ -90,6 +90,28 @@ TEST(SegmentationGraph, ConcaveFoldWeighsLessThanConvexFold) {
   EXPECT_LT(along(-2), 0.5 * along(-4));
 }
 
+TEST(SegmentationGraph, BridgesASlitButNotTwoComponents) {
+  // A strip rolled into a tube that is open along a slit as wide as one edge: bridging joins the
+  // slit's two edges; two such tubes side by side are never joined to each other.
+  const int n = 24;
+  TriangleMesh tube = strip(n, [](double) { return 0.0; });
+  const double radius = (n + 1) / (2 * M_PI);  // the slit is about one edge wide
+  for (int v = 0; v < tube.num_vertices(); ++v) {
+    const double angle = (tube.V(v, 0) + n / 2.0) / radius;
+    tube.V.row(v) << radius * std::cos(angle), tube.V(v, 1), radius * std::sin(angle);
+  }
+  MeshGraph g = build_mesh_graph(tube.V, tube.F);
+  EXPECT_EQ(bridge_boundary_gaps(tube.V, 1.5, 6, g), 4);  // two across the slit, two diagonals
+  MeshGraph none = build_mesh_graph(tube.V, tube.F);
+  EXPECT_EQ(bridge_boundary_gaps(tube.V, 0.5, 6, none), 0);  // narrower than the slit
+
+  const TriangleMesh two = side_by_side(tube, tube, Eigen::Vector3d(0, 1.2, 0));
+  MeshGraph g2 = build_mesh_graph(two.V, two.F);
+  EXPECT_EQ(bridge_boundary_gaps(two.V, 1.5, 6, g2), 8);
+  Eigen::VectorXi comp;
+  EXPECT_EQ(connected_components(g2, comp), 2);
+}
+
 TEST(SegmentationSpectral, PathGraphMatchesClosedForm) {
   // Plain Laplacian of a path with n vertices: λ_k = 2 − 2 cos(π k / n).
   const int n = 400;
@@ -196,6 +218,9 @@ TEST(SegmentationScene, MannequinPartsAndNames) {
     ASSERT_GE(c.matched[t], 0);
     EXPECT_EQ(r.parts[c.matched[t]].name, want);
   }
+  // Labels in the fixed order of names, so that colours match from mesh to mesh.
+  EXPECT_EQ(r.part_names(), (std::vector<std::string>{"torso", "head", "arm_left", "arm_right",
+                                                      "leg_left", "leg_right"}));
   EXPECT_GT(r.axes.up.y(), 0.95);  // estimated
   EXPECT_GT(r.axes.forward.z(), 0.95) << r.axes.forward_source;
   EXPECT_LT(r.eigen_residual, 1e-8);
@@ -248,6 +273,12 @@ TEST(SegmentationBadInput, ClearErrorsOrDocumentedFallbacks) {
   EXPECT_THROW(segment_mesh(cube, o), InputError);
   o.parts = -1;
   EXPECT_THROW(segment_mesh(cube, o), InputError);
+  o.parts = kMaxParts + 1;
+  EXPECT_THROW(segment_mesh(test::DefaultScene::get().mannequin, o), InputError);
+  o.parts = 8;  // as many parts as vertices: one each
+  const SegmentationResult each = segment_mesh(cube, o);
+  EXPECT_EQ(each.parts_chosen, 8);
+  EXPECT_EQ(each.vertex_labels.maxCoeff(), 7);
   o.parts = 1;  // fewer parts than the two components
   EXPECT_THROW(segment_mesh(side_by_side(cube, cube, Eigen::Vector3d(3, 0, 0)), o), InputError);
   TriangleMesh no_faces = cube;
@@ -271,6 +302,19 @@ TEST(SegmentationBadInput, ClearErrorsOrDocumentedFallbacks) {
   const SegmentationResult d = segment_mesh(line, o);
   EXPECT_EQ(d.parts_chosen, 2);
   EXPECT_GE(d.vertex_labels.minCoeff(), 0);
+
+  // A face with a repeated corner adds no self-loop; a face (a, a, a) is a component of one vertex.
+  TriangleMesh repeated = cube;
+  repeated.F.conservativeResize(cube.F.rows() + 1, 3);
+  repeated.F.row(cube.F.rows()) << 0, 0, 1;
+  EXPECT_EQ(build_mesh_graph(repeated.V, repeated.F).num_edges(), 18);
+  TriangleMesh lone = isolated;
+  lone.F.conservativeResize(cube.F.rows() + 1, 3);
+  lone.F.row(cube.F.rows()) << 8, 8, 8;
+  o.parts = 3;
+  const SegmentationResult l = segment_mesh(lone, o);
+  EXPECT_EQ(l.components, 2);
+  EXPECT_GE(l.vertex_labels(8), 0);
 
   // One part: everything in it.
   o.parts = 1;

@@ -287,6 +287,7 @@ TEST(Cli, SegmentWritesLabelsInFileOrderColoursAndOnePartPerObj) {
   EXPECT_GT(same, 0.9 * labels.size());
   EXPECT_EQ(j["parts"], 6);
   EXPECT_EQ(j["parts_chosen_by"], "given");
+  EXPECT_EQ(j["bridged_edges"], 0);  // a closed body has no boundary to bridge
   EXPECT_LT(j["eigen_residual"].get<double>(), 1e-8);
   EXPECT_EQ(j["face_labels"].size(), j["faces"].get<size_t>());
   int part_faces = 0;
@@ -305,7 +306,8 @@ TEST(Cli, SegmentBadInputExits2WithOneLineAndNoOutput) {
   write(dir.file("empty.obj"), "");
   for (const std::string args : {"missing.obj", "empty.obj", "cube.obj --parts 0", "cube.obj --parts 9",
                                  "cube.obj --affinity nearest", "cube.obj --laplacian weird",
-                                 "cube.obj --max-parts 0", "cube.obj --units furlong"}) {
+                                 "cube.obj --max-parts 0", "cube.obj --units furlong",
+                                 "cube.obj --bridge-gaps -1"}) {
     const std::string first = args.substr(0, args.find(' '));
     const CliRun r = run(dir, "segment " + dir.file(first) + args.substr(first.size()) + " -o " + dir.file("out"));
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;

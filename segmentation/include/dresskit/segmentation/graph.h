@@ -41,6 +41,12 @@ struct MeshGraph {
 MeshGraph build_mesh_graph(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F,
                            const AffinityOptions& options = {});
 
+/// Closes gaps such as a blouse's open front: adds an edge (affinity: the mean affinity; length:
+/// the distance) between two boundary vertices of one connected component that lie closer than
+/// `max_distance` [m] but more than `min_hops` edges apart on the graph. Returns the edges added.
+int bridge_boundary_gaps(const Eigen::MatrixX3d& V, double max_distance, int min_hops,
+                         MeshGraph& graph);
+
 /// Symmetric #V×#V affinity matrix W of the graph (zero diagonal).
 Eigen::SparseMatrix<double> affinity_matrix(const MeshGraph& graph);
 

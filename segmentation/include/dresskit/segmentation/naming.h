@@ -18,9 +18,9 @@ AxesEstimate estimate_axes(const Eigen::MatrixX3d& V, const Eigen::VectorXd& ver
 /// Names the parts (labels 0..P−1; label_component[l] = component of label l). A component cut into
 /// a hub part touching five limb parts is a body (torso, head, arm_left, arm_right, leg_left,
 /// leg_right: legs attach lowest, the head nearest the hub's axis); any other component is a
-/// garment (one part: skirt when it has two boundary loops or widens downwards, else body; several parts: the hub is body, a
-/// part below the hub more than beside it is leg_*, else sleeve_*). Left is the character's left
-/// (axes.left).
+/// garment (one part: skirt when it has two boundary loops or widens downwards, else body; several
+/// parts: the hub is body, a part below the hub more than beside it is leg_*, else sleeve_*). Left
+/// is the character's left (axes.left).
 std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& graph,
                                   const Eigen::VectorXd& vertex_area, const Eigen::VectorXi& labels,
                                   const std::vector<int>& label_component,

@@ -13,12 +13,18 @@
 
 namespace dresskit {
 
+/// The largest number of parts (given or automatic) that segment_mesh accepts.
+constexpr int kMaxParts = 64;
+
 struct SegmentationOptions {
   /// Total number of parts over all connected components; 0 = chosen by the largest eigengap of the
   /// union of the components' spectra, between #components + 1 and max_parts.
   int parts = 0;
   int max_parts = 8;  ///< upper bound of the automatic choice
   AffinityOptions affinity;
+  /// Boundary vertices of one component closer than this many mean edge lengths, and more than six
+  /// edges apart, are joined (bridge_boundary_gaps: a blouse's open front); 0 = off.
+  double bridge_gaps = 2.0;
   LaplacianKind laplacian = LaplacianKind::normalized;
   EigenOptions eigen;
   KMeansOptions kmeans;
@@ -62,11 +68,13 @@ struct SegmentationResult {
   Eigen::VectorXi vertex_labels;  ///< #V part index per vertex, −1 for vertices without a face
   Eigen::VectorXi face_labels;    ///< #F part index per face
   std::vector<NamedPart> parts;   ///< index = label
-  int parts_chosen = 0;
+  int parts_chosen =
+      0;  ///< parts in the result (the number asked for unless a cluster came out empty)
   bool parts_automatic = false;
   int components = 0;  ///< connected components with faces
   std::vector<int> parts_per_component;
   int isolated_vertices = 0;  ///< vertices without a face (label −1)
+  int bridged_edges = 0;      ///< edges added across boundary gaps
   Eigen::VectorXd spectrum;   ///< sorted union of the components' smallest eigenvalues
   double eigengap = 0.0;  ///< λ_K / λ_{K−1} of the union spectrum at the chosen K (0 if undefined)
   double eigen_residual = 0.0;    ///< max ‖L x − λ x‖ over every eigenpair computed
@@ -82,8 +90,8 @@ struct SegmentationResult {
 };
 
 /// Segments the mesh. Throws InputError for an unusable mesh or option (no faces, parts < 0, more
-/// parts than vertices, fewer parts than components) and EigenSolverError when the eigen-solver
-/// does not converge (the message says what was tried).
+/// parts than vertices or than kMaxParts, fewer parts than components) and EigenSolverError when
+/// the eigen-solver does not converge (the message says what was tried).
 SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& options = {});
 
 }  // namespace dresskit
