@@ -15,6 +15,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
+#include "align_command.h"
 #include "thickness_command.h"
 
 namespace fs = std::filesystem;
@@ -392,6 +393,8 @@ int main(int argc, char** argv) {
 
   cli::ThicknessCommand thickness;
   thickness.add_to(app);
+  cli::AlignCommand align;
+  align.add_to(app);
 
   try {
     app.parse(argc, argv);
@@ -411,6 +414,7 @@ int main(int argc, char** argv) {
     if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
     if (*simulate) return run_simulate(scene_path, simulate_dir, simulate_frames);
     if (*thickness.command) return thickness.run();
+    if (*align.command) return align.run();
     if (*demo) {
       body_options.pose = parse_pose(pose);
       garment_options.edge_length = body_options.edge_length;
