@@ -106,6 +106,10 @@ void AlignCommand::add_to(CLI::App& app) {
       ->add_option("--blend-radius", placement.blend_radius,
                    "part transforms blend within this distance [m]")
       ->capture_default_str();
+  command
+      ->add_option("--max-stretch", placement.max_edge_stretch,
+                   "edges longer than (1 + this) x rest length are shortened")
+      ->capture_default_str();
   command->add_flag("--no-part-scale", no_part_scale, "rigid per-part ICP (no per-part scale)");
   command->add_option("--reference", reference,
                       "placement: a reference placement of the garment (same vertex "
@@ -190,6 +194,8 @@ int AlignCommand::run() {
   report["unmatched_body_parts"] = p.matching.unmatched_body_parts;
   report["parts"] = parts;
   report["pushed_out_vertices"] = p.pushed_out;
+  report["stretch_limited_edges"] = p.stretch_limited_edges;
+  report["max_edge_stretch_limit"] = placement.max_edge_stretch;
   report["clearance_m"] = placement.clearance;
   report["blend_radius_m"] = placement.blend_radius;
   report["seconds"] = p.seconds;

@@ -149,10 +149,28 @@ IcpResult icp_align(const PointSet& source, const PointSet& target, const IcpOpt
   }
   result.transform = translation(ct) * current * translation(-cs);
   result.scale = std::cbrt(result.transform.block<3, 3>(0, 0).determinant());
-  const FitScore fit = score_fit(source, PointSet{target.V, target_normals}, result.transform,
-                                 options.inlier_distance * diag);
-  result.fitness = fit.fitness;
-  result.rmse = fit.rmse;
+  // Fitness and inlier RMSE on every source point, with the k-d tree ICP already built on the
+  // target.
+  const auto tree = icp.getSearchMethodTarget();
+  const Eigen::MatrixX3d moved_all =
+      transform_points(result.transform, source.V).rowwise() - ct.transpose();
+  const double limit = std::pow(options.inlier_distance * diag, 2);
+  std::vector<int> index(1);
+  std::vector<float> d2(1);
+  int inliers = 0;
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < moved_all.rows(); ++i) {
+    PointT p;
+    p.x = static_cast<float>(moved_all(i, 0));
+    p.y = static_cast<float>(moved_all(i, 1));
+    p.z = static_cast<float>(moved_all(i, 2));
+    if (tree->nearestKSearch(p, 1, index, d2) > 0 && d2[0] <= limit) {
+      ++inliers;
+      sum += d2[0];
+    }
+  }
+  result.fitness = static_cast<double>(inliers) / static_cast<double>(source.size());
+  result.rmse = inliers ? std::sqrt(sum / inliers) : 0.0;
   result.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

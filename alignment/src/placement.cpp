@@ -201,10 +201,35 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
     out.V.row(v) = (sum / (w_own + others)).transpose();
   }
 
-  // Push out of the body: along the normal of the nearest body vertex, to `clearance` outside.
+  // Rounds of strain limiting (edges over the limit shortened, both ends moved) and push out of the
+  // body (along the normal of the nearest body vertex, to `clearance` outside).
+  std::set<std::pair<int, int>> edge_set;
+  for (int f = 0; f < garment.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = garment.F(f, k), b = garment.F(f, (k + 1) % 3);
+      edge_set.insert({std::min(a, b), std::max(a, b)});
+    }
+  const std::vector<std::pair<int, int>> edges(edge_set.begin(), edge_set.end());
+  std::vector<double> rest(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    rest[e] = (garment.V.row(edges[e].first) - garment.V.row(edges[e].second)).norm();
   const PointLocator body_points(body.V);
   std::vector<bool> moved(garment.num_vertices(), false);
   for (int it = 0; it < options.push_iterations; ++it) {
+    for (int sweep = 0; sweep < options.stretch_sweeps; ++sweep) {
+      int limited = 0;
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto [a, b] = edges[e];
+        const Eigen::RowVector3d d = out.V.row(b) - out.V.row(a);
+        const double length = d.norm(), limit = (1.0 + options.max_edge_stretch) * rest[e];
+        if (length <= limit) continue;
+        const Eigen::RowVector3d shift = 0.5 * (length - limit) / length * d;
+        out.V.row(a) += shift;
+        out.V.row(b) -= shift;
+        ++limited;
+      }
+      if (sweep == 0) out.stretch_limited_edges = limited;
+    }
     for (int v = 0; v < garment.num_vertices(); ++v) {
       const Eigen::Vector3d x = out.V.row(v).transpose();
       const int b = body_points.nearest(x);

@@ -83,6 +83,7 @@ TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
   EXPECT_LT(q.mean_distance, 0.02);
   EXPECT_LT(q.p95_distance, 0.04);
   EXPECT_LT(q.inside_fraction, 0.01);
+  EXPECT_LT(q.max_edge_stretch, 0.5);  // no tears
   // Identity placement (the garment left where it was authored) is far worse: the test can fail.
   EXPECT_GT(placement_quality(garment.V, garment, reference.V, body).mean_distance, 0.1);
 }

@@ -23,7 +23,12 @@ struct PlacementOptions {
   double max_part_scale_change = 1.3;
   double blend_radius = 0.06;  ///< [m] part transforms blend within this distance of a boundary
   double clearance = 0.003;    ///< [m] garment vertices end at least this far outside the body
-  int push_iterations = 3;
+  int push_iterations = 3;     ///< rounds of (limit stretch, push out)
+  /// Edges longer than (1 + this) × their rest length are shortened (position-based strain
+  /// limiting, both ends moved) before each push, so that blending and pushing do not tear the
+  /// garment.
+  double max_edge_stretch = 0.3;
+  int stretch_sweeps = 10;  ///< Gauss–Seidel sweeps over the edges per round
 };
 
 struct PartPlacement {
@@ -42,7 +47,8 @@ struct PlacementResult {
   std::string global_method;           ///< "junctions (N landmarks)" or "multi-start ICP"
   std::vector<std::string> junctions;  ///< the part pairs used as landmarks
   std::vector<PartPlacement> parts;
-  int pushed_out = 0;  ///< garment vertices moved out of the body
+  int pushed_out = 0;             ///< garment vertices moved out of the body
+  int stretch_limited_edges = 0;  ///< edges over the strain limit in the last round's first sweep
   double seconds = 0.0;
 };
 
