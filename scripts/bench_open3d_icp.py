@@ -4,7 +4,8 @@
 Writes the pairs with `bench_alignment --export DIR` first, then runs Open3D (Debian's python3-open3d)
 with the same correspondence-distance schedule and iteration budget, and prints time and error ratios.
 
-usage: scripts/bench_open3d_icp.py DIR   (DIR holds pair_*.npz and dresskit.csv from bench_alignment)
+usage: OMP_NUM_THREADS=1 scripts/bench_open3d_icp.py DIR   (DIR: pair files and dresskit.csv written by
+       build/bin/bench_alignment --only export --export DIR; one thread, as dresskit runs on one core)
 """
 import csv
 import glob

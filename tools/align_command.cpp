@@ -110,7 +110,7 @@ void AlignCommand::add_to(CLI::App& app) {
       ->add_option("--max-stretch", placement.max_edge_stretch,
                    "edges longer than (1 + this) x rest length are shortened")
       ->capture_default_str();
-  command->add_flag("--no-part-scale", no_part_scale, "rigid per-part ICP (no per-part scale)");
+  command->add_flag("--part-scale", part_scale, "per-part similarity ICP (default: rigid parts)");
   command->add_option("--reference", reference,
                       "placement: a reference placement of the garment (same vertex "
                       "order) to compare with; adds `quality` to result.json");
@@ -167,7 +167,7 @@ int AlignCommand::run() {
   if (!body_labels.empty()) apply_part_labels(body, body_labels, body_labels_key, target);
   if (!garment.has_labels()) throw InputError(source + ": no part labels (give --garment-labels)");
   if (!body.has_labels()) throw InputError(target + ": no part labels (give --body-labels)");
-  placement.part_scale = !no_part_scale;
+  placement.part_scale = part_scale;
   const PlacementResult p = place_garment(garment, body, placement);
 
   json matches = json::array(), parts = json::array();

@@ -11,7 +11,7 @@ namespace dresskit::cli {
 struct AlignCommand {
   std::string source, target, dir, units, source_units, target_units, up = "+y";
   std::string garment_labels, body_labels, garment_labels_key, body_labels_key, reference;
-  bool rigid = false, with_scale = false, local = false, no_part_scale = false;
+  bool rigid = false, with_scale = false, local = false, part_scale = false;
   double min_fitness = 0.5;
   GlobalOptions global;
   PlacementOptions placement;

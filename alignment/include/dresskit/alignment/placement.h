@@ -13,8 +13,11 @@ namespace dresskit {
 
 struct PlacementOptions {
   MatchingOptions matching;
-  IcpOptions part_icp;         ///< per-part refinement (point-to-plane by default)
-  bool part_scale = true;      ///< per-part similarity (a child's arm is shorter and thinner)
+  IcpOptions part_icp;  ///< per-part refinement (point-to-plane by default)
+  /// Per-part similarity instead of rigid ICP. Off: the global similarity already carries the size
+  /// ratio, and on the casualsuit → child case rigid parts are closer to the reference
+  /// (docs/alignment.md).
+  bool part_scale = false;
   int min_part_vertices = 50;  ///< smaller parts keep the global transform (reported)
   /// A part's ICP is rejected (global transform kept, reported) when it turns the part by more than
   /// this relative to the global placement [degrees] ...
