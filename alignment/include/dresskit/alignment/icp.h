@@ -47,8 +47,8 @@ struct IcpOptions {
   /// Similarity transform (uniform scale) instead of a rigid one: point-to-point stages with an SVD
   /// that estimates scale (Umeyama), then the point-to-plane stages with the scale kept.
   bool with_scale = false;
-  /// At most this many source points drive ICP (a fixed-seed random subset; fitness and RMSE are
-  /// still measured on all points); 0 = all. More points average the noise down but cost time.
+  /// At most this many source points drive ICP and its fitness and RMSE (a fixed-seed random
+  /// subset); 0 = all. More points average the noise down but cost time.
   int max_source_points = 2500;
   /// Inlier threshold for the reported fitness and RMSE [fraction of the target's diagonal].
   double inlier_distance = 0.02;
