@@ -33,7 +33,8 @@ TEST(AlignCli, RigidRecoversAKnownTransformAcrossUnits) {
   EXPECT_EQ(lines(r.err), 1) << r.err;
   const std::size_t at = r.err.find("factor of ");
   ASSERT_NE(at, std::string::npos) << r.err;
-  EXPECT_NEAR(std::stod(r.err.substr(at + 10)), 100.0, 10.0) << r.err;  // bounding boxes of a rotated copy
+  EXPECT_NEAR(std::stod(r.err.substr(at + 10)), 100.0, 10.0)
+      << r.err;  // bounding boxes of a rotated copy
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 
   r = run(dir, "align " + dir.file("source.obj") + " " + dir.file("target.obj") +
