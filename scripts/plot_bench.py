@@ -6,6 +6,7 @@ usage: scripts/plot_bench.py stability IN.csv OUT.png
        scripts/plot_bench.py heat IN.csv OUT.png        (bench_heat_error's CSV)
        scripts/plot_bench.py surface IN.csv OUT.png     (dress-a-mesh thickness --plot's temperature.csv)
        scripts/plot_bench.py segmentation IN.csv OUT.png (bench_segmentation --csv)
+       scripts/plot_bench.py alignment IN.csv OUT.png   (bench_alignment --only tradeoff --csv)
 """
 import csv
 import sys
@@ -131,8 +132,32 @@ def segmentation(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def alignment(rows, out):
+    fig, axes = plt.subplots(1, 2, figsize=(12, 5))
+    for points in sorted({int(r["source_points"]) for r in rows}):
+        pts = sorted((float(r["mean_ms"]), float(r["median_rotation_deg"]), float(r["median_translation_percent"]),
+                      int(r["max_iterations"])) for r in rows if int(r["source_points"]) == points)
+        label = "%d source points" % points
+        axes[0].loglog([p[0] for p in pts], [p[1] for p in pts], "o-", ms=4, label=label)
+        axes[1].loglog([p[0] for p in pts], [p[2] for p in pts], "o-", ms=4, label=label)
+        if points == 2500:
+            for p in pts:
+                axes[0].annotate("%d it" % p[3], (p[0], p[1]), fontsize=7, xytext=(4, 3), textcoords="offset points")
+    axes[0].axhline(0.5, color="grey", ls="--", lw=0.8)
+    axes[1].axhline(0.5, color="grey", ls="--", lw=0.8)
+    axes[0].set_ylabel("median rotation error [deg]")
+    axes[1].set_ylabel("median translation error [% of diagonal]")
+    for ax in axes:
+        ax.set_xlabel("wall time per registration [ms], one core")
+        ax.legend(fontsize=8)
+    fig.suptitle("ICP error against run time: MakeHuman body, 20 deg, 0.5% noise, 10% outliers "
+                 "(max iterations per stage 1-40)")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 if __name__ == "__main__":
     kind, src, out = sys.argv[1:4]
     rows = list(csv.DictReader(open(src)))
     {"stability": stability, "error": error, "heat": heat, "surface": surface,
-     "segmentation": segmentation}[kind](rows, out)
+     "segmentation": segmentation, "alignment": alignment}[kind](rows, out)

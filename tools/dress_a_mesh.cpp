@@ -17,6 +17,7 @@
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
 #include "segment_command.h"
+#include "align_command.h"
 #include "thickness_command.h"
 
 namespace fs = std::filesystem;
@@ -433,6 +434,8 @@ int main(int argc, char** argv) {
   thickness.add_to(app);
   cli::SegmentCommand segment;
   segment.add_to(app);
+  cli::AlignCommand align;
+  align.add_to(app);
 
   try {
     app.parse(argc, argv);
@@ -453,6 +456,7 @@ int main(int argc, char** argv) {
     if (*simulate) return run_simulate(scene_path, simulate_dir, simulate_frames);
     if (*thickness.command) return thickness.run();
     if (*segment.command) return segment.run();
+    if (*align.command) return align.run();
     if (*demo) {
       body_options.pose = parse_pose(pose);
       garment_options.edge_length = body_options.edge_length;

@@ -1,0 +1,24 @@
+#pragma once
+// Per-vertex part labels from a file, until segmentation (issue 5) provides them. The result has
+// the layout of TriangleMesh::labels / label_names, which is what the part-wise placement reads, so
+// a segmentation result plugs in by filling those two fields.
+#include <string>
+#include <vector>
+
+#include "dresskit/mesh/triangle_mesh.h"
+
+namespace dresskit {
+
+/// Reads labels in the formats of ../shared/data/labels:
+/// - {"labels": ["torso", "arm_left", …]}: one name per vertex in the source file's vertex order;
+/// - {"labels": {"<key>": [names…], …}}: several meshes in one file; `key` picks one (when empty,
+/// the
+///   mesh file's stem is tried with and without an "mh_" prefix);
+/// - {"<part>": [vertex indices…], …}: 0-based index lists per part (GarmentCode segmentation).
+/// Sets mesh.labels and mesh.label_names through mesh.source_vertex (so the file's vertex order is
+/// kept whatever the loader did). Throws InputError naming the file for a missing key, a count that
+/// differs from the mesh's source vertex count, or a malformed file.
+void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path,
+                       const std::string& key = "", const std::string& mesh_path = "");
+
+}  // namespace dresskit

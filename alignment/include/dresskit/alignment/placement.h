@@ -1,0 +1,77 @@
+#pragma once
+// Part-wise placement of a garment on a body of another size and pose: part matching, a global
+// similarity from the junctions between parts, per-part ICP, blending of the part transforms across
+// part boundaries, and a push out of the body by a clearance (docs/alignment.md).
+#include <string>
+#include <vector>
+
+#include "dresskit/alignment/icp.h"
+#include "dresskit/alignment/part_matching.h"
+#include "dresskit/mesh/triangle_mesh.h"
+
+namespace dresskit {
+
+struct PlacementOptions {
+  MatchingOptions matching;
+  IcpOptions part_icp;  ///< per-part refinement (point-to-plane by default)
+  /// Per-part similarity instead of rigid ICP. Off: the global similarity already carries the size
+  /// ratio, and on the casualsuit → child case rigid parts are closer to the reference
+  /// (docs/alignment.md).
+  bool part_scale = false;
+  int min_part_vertices = 50;  ///< smaller parts keep the global transform (reported)
+  /// A part's ICP is rejected (global transform kept, reported) when it turns the part by more than
+  /// this relative to the global placement [degrees] ...
+  double max_part_rotation_deg = 30.0;
+  /// ... or changes its scale by more than this factor.
+  double max_part_scale_change = 1.3;
+  double blend_radius = 0.06;  ///< [m] part transforms blend within this distance of a boundary
+  double clearance = 0.003;    ///< [m] garment vertices end at least this far outside the body
+  int push_iterations = 3;     ///< rounds of (limit stretch, push out)
+  /// Edges longer than (1 + this) × their rest length are shortened (position-based strain
+  /// limiting, both ends moved) before each push, so that blending and pushing do not tear the
+  /// garment.
+  double max_edge_stretch = 0.3;
+  int stretch_sweeps = 10;  ///< Gauss–Seidel sweeps over the edges per round
+};
+
+struct PartPlacement {
+  std::string garment_part, body_part;
+  int vertices = 0;
+  IcpResult icp;          ///< the part's refinement (transform: garment part → body)
+  bool used_icp = false;  ///< false: the global transform was kept
+  std::string note;       ///< why not, when not
+};
+
+struct PlacementResult {
+  Eigen::MatrixX3d V;  ///< posed garment vertices [m], in the garment mesh's order
+  MatchingResult matching;
+  Eigen::Matrix4d global = Eigen::Matrix4d::Identity();  ///< garment → body similarity
+  double global_scale = 1.0;
+  std::string global_method;           ///< "junctions (N landmarks)" or "multi-start ICP"
+  std::vector<std::string> junctions;  ///< the part pairs used as landmarks
+  std::vector<PartPlacement> parts;
+  int pushed_out = 0;             ///< garment vertices moved out of the body
+  int stretch_limited_edges = 0;  ///< edges over the strain limit in the last round's first sweep
+  double seconds = 0.0;
+};
+
+/// Places a labelled garment on a labelled body (both in metres, +Y up). Throws InputError when the
+/// inputs cannot be used (no labels, no matched parts, unusable point sets).
+PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& body,
+                              const PlacementOptions& options = {});
+
+/// Comparison of a posed garment with a reference placement (same vertex order), for tests/benches.
+struct PlacementQuality {
+  double body_height = 0.0;       ///< [m] extent of the body along +Y
+  double mean_distance = 0.0;     ///< mean vertex distance to the reference / body height
+  double p95_distance = 0.0;      ///< 95th percentile / body height
+  double inside_fraction = 0.0;   ///< garment vertices inside the body (winding number > 0.5)
+  double max_edge_stretch = 0.0;  ///< max over edges of posed length / rest length − 1
+};
+PlacementQuality placement_quality(const Eigen::MatrixX3d& posed, const TriangleMesh& garment_rest,
+                                   const Eigen::MatrixX3d& reference, const TriangleMesh& body);
+
+/// Fraction of the points inside a closed mesh (generalised winding number > 0.5).
+double inside_fraction(const Eigen::MatrixX3d& points, const TriangleMesh& closed_mesh);
+
+}  // namespace dresskit

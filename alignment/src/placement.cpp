@@ -1,0 +1,292 @@
+#include "dresskit/alignment/placement.h"
+
+#include <Eigen/SVD>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <numeric>
+#include <set>
+
+#include "dresskit/mesh/errors.h"
+
+namespace dresskit {
+namespace {
+
+using Junction = std::pair<std::string, std::string>;  // part names, sorted
+
+Junction junction(const std::string& a, const std::string& b) {
+  return a < b ? Junction{a, b} : Junction{b, a};
+}
+
+// Centroid of the vertices on each boundary between two labelled parts. On a garment the boundary
+// loop surrounds the limb or neck just like the body's does, so the two centroids are the same
+// anatomical point (a shoulder, a hip, the neck) whatever the ease of the garment.
+std::map<Junction, Eigen::Vector3d> junction_centroids(const TriangleMesh& mesh) {
+  std::map<Junction, std::set<int>> members;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int u = mesh.F(f, k), v = mesh.F(f, (k + 1) % 3);
+      const int a = mesh.labels(u), b = mesh.labels(v);
+      if (a < 0 || b < 0 || a == b) continue;
+      auto& set = members[junction(mesh.label_names[a], mesh.label_names[b])];
+      set.insert(u);
+      set.insert(v);
+    }
+  }
+  std::map<Junction, Eigen::Vector3d> out;
+  for (const auto& [key, set] : members) {
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    for (int v : set) sum += mesh.V.row(v).transpose();
+    out[key] = sum / static_cast<double>(set.size());
+  }
+  return out;
+}
+
+// Least-squares similarity (Umeyama) mapping the columns of X onto the columns of Y.
+Eigen::Matrix4d umeyama_similarity(const Eigen::Matrix3Xd& X, const Eigen::Matrix3Xd& Y) {
+  return Eigen::umeyama(X, Y, true);
+}
+
+std::vector<int> rows_with_label(const TriangleMesh& mesh, int label) {
+  std::vector<int> rows;
+  for (int v = 0; v < mesh.num_vertices(); ++v)
+    if (mesh.labels(v) == label) rows.push_back(v);
+  return rows;
+}
+
+PointSet gather(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d& N,
+                const std::vector<int>& rows) {
+  PointSet p;
+  p.V.resize(rows.size(), 3);
+  if (N.rows()) p.N.resize(rows.size(), 3);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    p.V.row(k) = V.row(rows[k]);
+    if (N.rows()) p.N.row(k) = N.row(rows[k]);
+  }
+  return p;
+}
+
+int label_of(const TriangleMesh& mesh, const std::string& name) {
+  const auto it = std::find(mesh.label_names.begin(), mesh.label_names.end(), name);
+  return it == mesh.label_names.end() ? -1 : static_cast<int>(it - mesh.label_names.begin());
+}
+
+double rotation_angle_deg(const Eigen::Matrix4d& T) {
+  const Eigen::Matrix3d A = T.block<3, 3>(0, 0);
+  const Eigen::Matrix3d R = A / std::cbrt(A.determinant());
+  return std::acos(std::clamp((R.trace() - 1.0) / 2.0, -1.0, 1.0)) * 180.0 / M_PI;
+}
+
+}  // namespace
+
+PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& body,
+                              const PlacementOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  if (!garment.has_labels()) throw InputError("garment: no part labels (give --garment-labels)");
+  if (!body.has_labels()) throw InputError("body: no part labels (give --body-labels)");
+  check_point_set(PointSet{garment.V, {}}, "garment");
+  check_point_set(PointSet{body.V, {}}, "body");
+
+  PlacementResult out;
+  out.matching = match_parts(describe_parts(garment), describe_parts(body), options.matching);
+  if (out.matching.matches.empty())
+    throw InputError("garment: no garment part matches a body part");
+  std::map<std::string, std::string> body_part_of;
+  for (const auto& m : out.matching.matches) body_part_of[m.garment_part] = m.body_part;
+
+  // Global similarity from the junctions that both sides have.
+  const auto gj = junction_centroids(garment), bj = junction_centroids(body);
+  std::vector<Eigen::Vector3d> from, to;
+  for (const auto& [key, centre] : gj) {
+    if (!body_part_of.count(key.first) || !body_part_of.count(key.second)) continue;
+    const auto it = bj.find(junction(body_part_of[key.first], body_part_of[key.second]));
+    if (it == bj.end()) continue;
+    from.push_back(centre);
+    to.push_back(it->second);
+    out.junctions.push_back(key.first + "|" + key.second);
+  }
+  bool spread = false;
+  if (from.size() >= 3) {
+    Eigen::Matrix3Xd X(3, from.size());
+    for (std::size_t k = 0; k < from.size(); ++k) X.col(k) = from[k];
+    const Eigen::Matrix3Xd C = X.colwise() - X.rowwise().mean();
+    const Eigen::JacobiSVD<Eigen::Matrix3Xd> svd(C);
+    spread = svd.singularValues()(1) > 1e-3 * svd.singularValues()(0);  // not all on one line
+  }
+  const Eigen::MatrixX3d body_normals = vertex_normals(body.V, body.F);
+  if (spread) {
+    Eigen::Matrix3Xd X(3, from.size()), Y(3, to.size());
+    for (std::size_t k = 0; k < from.size(); ++k) {
+      X.col(k) = from[k];
+      Y.col(k) = to[k];
+    }
+    out.global = umeyama_similarity(X, Y);
+    out.global_method = "junctions (" + std::to_string(from.size()) + " landmarks)";
+  } else {
+    GlobalOptions g;
+    g.with_scale = true;
+    out.global =
+        global_align(PointSet{garment.V, {}}, PointSet{body.V, body_normals}, g).result.transform;
+    out.global_method = "multi-start ICP (fewer than 3 junctions in common)";
+    out.junctions.clear();
+  }
+  out.global_scale = std::cbrt(out.global.block<3, 3>(0, 0).determinant());
+
+  // Per-part refinement.
+  const int n_labels = static_cast<int>(garment.label_names.size());
+  std::vector<Eigen::Matrix4d> part_transform(n_labels, out.global);
+  for (const auto& m : out.matching.matches) {
+    PartPlacement p;
+    p.garment_part = m.garment_part;
+    p.body_part = m.body_part;
+    const int gl = label_of(garment, m.garment_part), bl = label_of(body, m.body_part);
+    const std::vector<int> grows = rows_with_label(garment, gl), brows = rows_with_label(body, bl);
+    p.vertices = static_cast<int>(grows.size());
+    p.icp.transform = out.global;
+    p.icp.scale = out.global_scale;
+    if (p.vertices < options.min_part_vertices ||
+        static_cast<int>(brows.size()) < options.min_part_vertices) {
+      p.note = "too few vertices for ICP: global transform kept";
+    } else {
+      IcpOptions o = options.part_icp;
+      o.with_scale = options.part_scale;
+      const IcpResult r = icp_align(gather(garment.V, {}, grows),
+                                    gather(body.V, body_normals, brows), o, out.global);
+      const Eigen::Matrix4d relative = r.transform * out.global.inverse();
+      const double scale_change = r.scale / out.global_scale;
+      if (rotation_angle_deg(relative) > options.max_part_rotation_deg) {
+        p.note = "ICP turned the part too far from the global placement: global transform kept";
+      } else if (scale_change > options.max_part_scale_change ||
+                 scale_change < 1.0 / options.max_part_scale_change) {
+        p.note = "ICP changed the part's scale too much: global transform kept";
+      } else {
+        p.used_icp = true;
+        part_transform[gl] = r.transform;
+      }
+      p.icp = r;
+    }
+    out.parts.push_back(p);
+  }
+
+  // Blending: a vertex of part p takes weight ½·f(d/R) of each other part q at distance d < R from
+  // it (f falls smoothly from 1 to 0), the rest stays with p; at a boundary both sides get ½.
+  std::vector<std::unique_ptr<PointLocator>> part_points(n_labels);
+  for (int l = 0; l < n_labels; ++l) {
+    const std::vector<int> rows = rows_with_label(garment, l);
+    if (!rows.empty())
+      part_points[l] = std::make_unique<PointLocator>(gather(garment.V, {}, rows).V);
+  }
+  const double R = options.blend_radius;
+  out.V.resize(garment.num_vertices(), 3);
+  for (int v = 0; v < garment.num_vertices(); ++v) {
+    const Eigen::Vector4d x(garment.V(v, 0), garment.V(v, 1), garment.V(v, 2), 1.0);
+    const int own = garment.labels(v);
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double others = 0.0;
+    for (int q = 0; q < n_labels; ++q) {
+      if (q == own || !part_points[q] || R <= 0) continue;
+      double d2 = 0.0;
+      part_points[q]->nearest(x.head<3>(), &d2);
+      const double t = std::sqrt(d2) / R;
+      if (t >= 1.0) continue;
+      const double w = 0.5 * (1.0 - t * t * (3.0 - 2.0 * t));
+      sum += w * (part_transform[q] * x).head<3>();
+      others += w;
+    }
+    const Eigen::Matrix4d& mine = own >= 0 ? part_transform[own] : out.global;
+    const double w_own = std::max(0.0, 1.0 - others);
+    sum += w_own * (mine * x).head<3>();
+    out.V.row(v) = (sum / (w_own + others)).transpose();
+  }
+
+  // Rounds of strain limiting (edges over the limit shortened, both ends moved) and push out of the
+  // body (along the normal of the nearest body vertex, to `clearance` outside).
+  std::set<std::pair<int, int>> edge_set;
+  for (int f = 0; f < garment.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = garment.F(f, k), b = garment.F(f, (k + 1) % 3);
+      edge_set.insert({std::min(a, b), std::max(a, b)});
+    }
+  const std::vector<std::pair<int, int>> edges(edge_set.begin(), edge_set.end());
+  std::vector<double> rest(edges.size());
+  for (std::size_t e = 0; e < edges.size(); ++e)
+    rest[e] = (garment.V.row(edges[e].first) - garment.V.row(edges[e].second)).norm();
+  const PointLocator body_points(body.V);
+  std::vector<bool> moved(garment.num_vertices(), false);
+  for (int it = 0; it < options.push_iterations; ++it) {
+    for (int sweep = 0; sweep < options.stretch_sweeps; ++sweep) {
+      int limited = 0;
+      for (std::size_t e = 0; e < edges.size(); ++e) {
+        const auto [a, b] = edges[e];
+        const Eigen::RowVector3d d = out.V.row(b) - out.V.row(a);
+        const double length = d.norm(), limit = (1.0 + options.max_edge_stretch) * rest[e];
+        if (length <= limit) continue;
+        const Eigen::RowVector3d shift = 0.5 * (length - limit) / length * d;
+        out.V.row(a) += shift;
+        out.V.row(b) -= shift;
+        ++limited;
+      }
+      if (sweep == 0) out.stretch_limited_edges = limited;
+    }
+    for (int v = 0; v < garment.num_vertices(); ++v) {
+      const Eigen::Vector3d x = out.V.row(v).transpose();
+      const int b = body_points.nearest(x);
+      const Eigen::Vector3d n = body_normals.row(b).transpose();
+      const double s = (x - body.V.row(b).transpose()).dot(n);
+      if (s < options.clearance) {
+        out.V.row(v) += ((options.clearance - s) * n).transpose();
+        moved[v] = true;
+      }
+    }
+  }
+  out.pushed_out = static_cast<int>(std::count(moved.begin(), moved.end(), true));
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+double inside_fraction(const Eigen::MatrixX3d& points, const TriangleMesh& m) {
+  if (points.rows() == 0) return 0.0;
+  int inside = 0;
+  for (Eigen::Index i = 0; i < points.rows(); ++i) {
+    const Eigen::Vector3d p = points.row(i).transpose();
+    double total = 0.0;  // sum of signed solid angles (Van Oosterom–Strackee)
+    for (int f = 0; f < m.num_faces(); ++f) {
+      const Eigen::Vector3d a = m.V.row(m.F(f, 0)).transpose() - p,
+                            b = m.V.row(m.F(f, 1)).transpose() - p,
+                            c = m.V.row(m.F(f, 2)).transpose() - p;
+      const double la = a.norm(), lb = b.norm(), lc = c.norm();
+      total += 2.0 * std::atan2(a.dot(b.cross(c)),
+                                la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb);
+    }
+    inside += total / (4.0 * M_PI) > 0.5;
+  }
+  return static_cast<double>(inside) / static_cast<double>(points.rows());
+}
+
+PlacementQuality placement_quality(const Eigen::MatrixX3d& posed, const TriangleMesh& garment_rest,
+                                   const Eigen::MatrixX3d& reference, const TriangleMesh& body) {
+  PlacementQuality q;
+  q.body_height = body.V.col(1).maxCoeff() - body.V.col(1).minCoeff();
+  std::vector<double> d(posed.rows());
+  for (Eigen::Index i = 0; i < posed.rows(); ++i)
+    d[i] = (posed.row(i) - reference.row(i)).norm() / q.body_height;
+  q.mean_distance =
+      d.empty() ? 0.0 : std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
+  std::sort(d.begin(), d.end());
+  q.p95_distance = d.empty() ? 0.0 : d[static_cast<std::size_t>(0.95 * (d.size() - 1))];
+  q.inside_fraction = inside_fraction(posed, body);
+  for (int f = 0; f < garment_rest.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = garment_rest.F(f, k), b = garment_rest.F(f, (k + 1) % 3);
+      const double rest = (garment_rest.V.row(a) - garment_rest.V.row(b)).norm();
+      if (rest <= 0) continue;
+      q.max_edge_stretch =
+          std::max(q.max_edge_stretch, (posed.row(a) - posed.row(b)).norm() / rest - 1.0);
+    }
+  }
+  return q;
+}
+
+}  // namespace dresskit

@@ -1,0 +1,104 @@
+// Part matching, optimal assignment and the part-wise placement of a MakeHuman outfit on a child's
+// body against the reference placement.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <numeric>
+#include <random>
+
+#include "alignment/alignment_shapes.h"
+#include "dresskit/alignment/placement.h"
+#include "dresskit/mesh/errors.h"
+#include "scene/scene_fixture.h"
+#include "test_data.h"
+
+using namespace dresskit;
+
+TEST(Matching, OptimalAssignmentMatchesBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 20; ++trial) {
+    const int rows = 2 + trial % 4, cols = 2 + (trial / 4) % 4;
+    Eigen::MatrixXd cost(rows, cols);
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < cols; ++j) cost(i, j) = u(rng);
+    const std::vector<int> a = optimal_assignment(cost);
+    double got = 0.0;
+    for (int i = 0; i < rows; ++i)
+      if (a[i] >= 0) got += cost(i, a[i]);
+    // Brute force over injective maps of the smaller side.
+    std::vector<int> cols_perm(std::max(rows, cols));
+    std::iota(cols_perm.begin(), cols_perm.end(), 0);
+    double best = 1e18;
+    do {
+      double sum = 0.0;
+      for (int i = 0; i < rows; ++i)
+        if (cols_perm[i] < cols) sum += cost(i, cols_perm[i]);
+      best = std::min(best, sum);
+    } while (std::next_permutation(cols_perm.begin(), cols_perm.end()));
+    EXPECT_NEAR(got, best, 1e-12) << rows << "x" << cols;
+    EXPECT_EQ(std::count(a.begin(), a.end(), -1), std::max(0, rows - cols));
+  }
+}
+
+TEST(Matching, ByNameAndByDescriptorsWhenNamesDiffer) {
+  const TriangleMesh& body = test::DefaultScene::get().mannequin;
+  const std::vector<PartDescriptor> parts = describe_parts(body);
+  ASSERT_EQ(parts.size(), 6u);
+  MatchingResult by_name = match_parts(parts, parts);
+  ASSERT_EQ(by_name.matches.size(), 6u);
+  for (const auto& m : by_name.matches) EXPECT_EQ(m.garment_part, m.body_part);
+
+  // Same parts under other names, slightly moved: matched by descriptors to the right part.
+  TriangleMesh renamed = body;
+  for (auto& name : renamed.label_names) name = "part_" + name;
+  renamed.V.col(0) *= 1.05;
+  const MatchingResult by_shape = match_parts(describe_parts(renamed), parts);
+  ASSERT_EQ(by_shape.matches.size(), 6u);
+  for (const auto& m : by_shape.matches) {
+    EXPECT_EQ(m.garment_part, "part_" + m.body_part);
+    EXPECT_EQ(m.by, "descriptor");
+    EXPECT_GT(m.confidence, 0.5);
+  }
+  EXPECT_TRUE(by_shape.unmatched_garment_parts.empty());
+}
+
+TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
+  DRESSKIT_REQUIRE_DATA();
+  const std::string d = test::data_dir();
+  LoadOptions dm;
+  dm.units = Units::parse("dm");
+  TriangleMesh garment = load_mesh(d + "/garments/mh_female_casualsuit01.obj", dm);
+  TriangleMesh body = load_mesh(d + "/bodies/mh_girl_child_11y.obj", dm);
+  const TriangleMesh reference =
+      load_mesh(d + "/reference/female_casualsuit01__on__mh_girl_child_11y.obj", dm);
+  apply_part_labels(garment, d + "/labels/mh_clothes_part_labels.json", "",
+                    "mh_female_casualsuit01.obj");
+  apply_part_labels(body, d + "/labels/mh_body_part_labels.json");
+  const PlacementResult p = place_garment(garment, body);
+  EXPECT_EQ(p.matching.matches.size(), 6u);
+  EXPECT_GE(p.junctions.size(), 3u);
+  EXPECT_NEAR(p.global_scale, 0.77, 0.05);  // child / woman
+  const PlacementQuality q = placement_quality(p.V, garment, reference.V, body);
+  EXPECT_LT(q.mean_distance, 0.02);
+  EXPECT_LT(q.p95_distance, 0.04);
+  EXPECT_LT(q.inside_fraction, 0.01);
+  EXPECT_LT(q.max_edge_stretch, 0.5);  // no tears
+  // Identity placement (the garment left where it was authored) is far worse: the test can fail.
+  EXPECT_GT(placement_quality(garment.V, garment, reference.V, body).mean_distance, 0.1);
+}
+
+TEST(Placement, NeedsLabelsAndAMatch) {
+  const auto& scene = test::DefaultScene::get();
+  TriangleMesh unlabelled = scene.garments[0];
+  unlabelled.labels.resize(0);
+  EXPECT_THROW(place_garment(unlabelled, scene.mannequin), InputError);
+  TriangleMesh far = scene.garments[0];
+  for (auto& name : far.label_names) name = "x_" + name;
+  far.V.array() += 100.0;  // nothing alike: no descriptor match either
+  MatchingOptions strict;
+  strict.max_cost = 1e-6;
+  PlacementOptions options;
+  options.matching = strict;
+  EXPECT_THROW(place_garment(far, scene.mannequin, options), InputError);
+}
