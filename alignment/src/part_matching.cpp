@@ -1,4 +1,5 @@
 #include "dresskit/alignment/part_matching.h"
+#include "dresskit/segmentation/metrics.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
@@ -59,55 +60,7 @@ double descriptor_cost(const PartDescriptor& g, const PartDescriptor& b) {
 }  // namespace
 
 std::vector<int> optimal_assignment(const Eigen::MatrixXd& cost) {
-  // Hungarian method with potentials on a square matrix padded with a large cost (O(n³)).
-  const int rows = static_cast<int>(cost.rows()), cols = static_cast<int>(cost.cols());
-  const int n = std::max(rows, cols);
-  const double pad = 1e9, inf = std::numeric_limits<double>::infinity();
-  auto a = [&](int i, int j) { return (i < rows && j < cols) ? cost(i, j) : pad; };
-  std::vector<double> u(n + 1, 0.0), v(n + 1, 0.0);
-  std::vector<int> p(n + 1, 0), way(n + 1, 0);
-  for (int i = 1; i <= n; ++i) {
-    p[0] = i;
-    int j0 = 0;
-    std::vector<double> minv(n + 1, inf);
-    std::vector<bool> used(n + 1, false);
-    do {
-      used[j0] = true;
-      const int i0 = p[j0];
-      double delta = inf;
-      int j1 = 0;
-      for (int j = 1; j <= n; ++j) {
-        if (used[j]) continue;
-        const double cur = a(i0 - 1, j - 1) - u[i0] - v[j];
-        if (cur < minv[j]) {
-          minv[j] = cur;
-          way[j] = j0;
-        }
-        if (minv[j] < delta) {
-          delta = minv[j];
-          j1 = j;
-        }
-      }
-      for (int j = 0; j <= n; ++j) {
-        if (used[j]) {
-          u[p[j]] += delta;
-          v[j] -= delta;
-        } else {
-          minv[j] -= delta;
-        }
-      }
-      j0 = j1;
-    } while (p[j0] != 0);
-    do {
-      const int j1 = way[j0];
-      p[j0] = p[j1];
-      j0 = j1;
-    } while (j0);
-  }
-  std::vector<int> assignment(rows, -1);
-  for (int j = 1; j <= n; ++j)
-    if (p[j] - 1 < rows && j - 1 < cols) assignment[p[j] - 1] = j - 1;
-  return assignment;
+  return max_weight_matching(-cost);  // segmentation's Hungarian method (metrics.h)
 }
 
 MatchingResult match_parts(const std::vector<PartDescriptor>& garment,
