@@ -10,6 +10,7 @@
 
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/scene.h"
+#include "dresskit/cloth/seams.h"
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
@@ -211,7 +212,18 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
   if (!fs::create_directories(dir, ec) && ec) throw OutputError(dir + ": cannot create directory: " + ec.message());
   ClothSimulator sim(scene.model, scene.simulation);
   sim.set_pinned(scene.pins);
+  if (!scene.pin_motion.particles.empty()) sim.set_pin_motion(scene.pin_motion);
   const double dt = scene.simulation.dt;
+  const bool sewing = scene.model.seams.size() > 0;
+  // Output: the cloth, with closed seams welded into single vertices when asked.
+  auto cloth_text = [&] {
+    if (!sewing || !scene.weld_seams) return cloth_obj_text(sim.positions(), scene.faces, scene.model.springs);
+    Eigen::MatrixX3d V;
+    Eigen::MatrixX3i F;
+    std::vector<int> to;
+    weld_seams(sim.positions(), scene.faces, scene.model.seams, scene.simulation.seam_tolerance, V, F, to);
+    return cloth_obj_text(V, F, scene.model.springs);
+  };
   std::vector<double> energy;
   std::string stopped = "duration reached", failure;
   bool nan = false;
@@ -220,7 +232,7 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
   auto write_frame = [&](int index) {
     char name[32];
     std::snprintf(name, sizeof name, "frame_%05d.obj", index);
-    write_file_atomically((fs::path(dir) / name).string(), cloth_obj_text(sim.positions(), scene.faces, scene.model.springs));
+    write_file_atomically((fs::path(dir) / name).string(), cloth_text());
   };
   // Layers: the gap of every double layer and the order of the layers, at every frame.
   const bool layered = scene.model.layer_offset.size() > 1;
@@ -261,6 +273,13 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     }
   }
   int deep_pushes = 0;
+  // Cloth–cloth: edge–triangle crossings at the start, at every frame and at the end, and what the
+  // collision passes did; time per phase.
+  const int crossings_at_start = sim.intersections();
+  int worst_crossings = crossings_at_start;
+  SelfCollisionResult self_total;
+  int held_steps = 0;
+  double t_forces = 0, t_integrate = 0, t_constraints = 0, t_seams = 0, t_collide = 0, t_self = 0;
   const auto t0 = Clock::now();
   energy.push_back(sim.elastic_energy());
   track_layers();
@@ -276,6 +295,18 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     }
     cg_iterations += r.solver_iterations;
     deep_pushes += r.deep_pushes;
+    self_total.proximity_pairs += r.self.proximity_pairs;
+    self_total.repulsions += r.self.repulsions;
+    self_total.ccd_collisions += r.self.ccd_collisions;
+    self_total.zones += r.self.zones;
+    self_total.zone_particles += r.self.zone_particles;
+    held_steps += r.self.held;
+    t_forces += r.force_seconds;
+    t_integrate += r.integrate_seconds;
+    t_constraints += r.constraint_seconds;
+    t_seams += r.seam_seconds;
+    t_collide += r.collision_seconds;
+    t_self += r.self_collision_seconds;
     smallest_dt = std::min(smallest_dt, r.dt);
     ++steps;
     // Frame k is the first state at or after time k / fps.
@@ -283,12 +314,13 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
       ++frame_count;
       energy.push_back(sim.elastic_energy());
       track_layers();
+      if (scene.simulation.self_collision) worst_crossings = std::max(worst_crossings, sim.intersections());
       if (frames) write_frame(frame_count);
     }
   }
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
-  write_file_atomically((fs::path(dir) / "result.obj").string(),
-                        cloth_obj_text(sim.positions(), scene.faces, scene.model.springs));
+  write_file_atomically((fs::path(dir) / "result.obj").string(), cloth_text());
+  const int crossings_at_end = sim.intersections();
   double closest = std::numeric_limits<double>::infinity();
   for (const Collider& c : scene.simulation.colliders) {
     Eigen::Vector3d n;
@@ -355,6 +387,29 @@ int run_simulate(const std::string& scene_path, const std::string& dir, bool fra
     }
     report["bodies"] = bodies;
     report["deep_pushes"] = deep_pushes;
+  }
+  report["self_collision"] = scene.simulation.self_collision;
+  report["intersections"] = {{"at_start", crossings_at_start}, {"at_end", crossings_at_end},
+                             {"max_over_frames", std::max(worst_crossings, crossings_at_end)}};
+  if (scene.simulation.self_collision) {
+    report["cloth_collisions"] = {{"thickness_m", scene.simulation.self_collision_options.thickness},
+                                  {"proximity_pairs", self_total.proximity_pairs},
+                                  {"repulsions", self_total.repulsions},
+                                  {"ccd_collisions", self_total.ccd_collisions},
+                                  {"impact_zones", self_total.zones},
+                                  {"impact_zone_particles", self_total.zone_particles},
+                                  {"steps_held", held_steps}};
+  }
+  report["phase_seconds"] = {{"forces_and_assembly", t_forces}, {"integrator", t_integrate},
+                             {"layer_guard_and_limits", t_constraints}, {"seams", t_seams},
+                             {"colliders", t_collide}, {"cloth_collisions", t_self}};
+  if (sewing) {
+    const SeamGaps g = seam_gaps(scene.model.seams, sim.positions(), scene.simulation.seam_tolerance);
+    int sewn = 0;
+    for (char c : sim.sewn()) sewn += c;
+    report["seams"] = {{"stitches", g.stitches}, {"closed", g.closed}, {"sewn", sewn},
+                       {"max_gap_mm", g.max * 1e3}, {"mean_gap_mm", g.mean * 1e3},
+                       {"tolerance_mm", scene.simulation.seam_tolerance * 1e3}, {"welded", scene.weld_seams}};
   }
   report["layers"] = scene.model.layer_offset.size();
   report["garments"] = garments;

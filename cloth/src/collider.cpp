@@ -44,6 +44,22 @@ Collider Collider::box(const Eigen::Vector3d& centre, const Eigen::Vector3d& hal
   return c;
 }
 
+Collider Collider::cylinder(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double radius,
+                            double half_length, double friction) {
+  if (!centre.allFinite() || !axis.allFinite() || axis.norm() < 1e-12 || !(radius > 0.0) || !std::isfinite(radius) ||
+      !(half_length > 0.0) || !std::isfinite(half_length)) {
+    throw InputError("cylinder collider: centre finite, axis non-zero, radius and half_length positive");
+  }
+  Collider c;
+  c.kind = Kind::cylinder;
+  c.point = centre;
+  c.normal = axis.normalized();
+  c.radius = radius;
+  c.half_length = half_length;
+  c.friction = friction;
+  return c;
+}
+
 Collider Collider::mesh(std::shared_ptr<const MeshDistance> body, double friction) {
   if (!body) throw InputError("mesh collider: no body");
   Collider c;
@@ -78,6 +94,23 @@ double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) co
       *outward = Eigen::Vector3d::Zero();
       (*outward)(axis) = d(axis) >= 0.0 ? 1.0 : -1.0;
       return q(axis);
+    }
+    case Kind::cylinder: {
+      // In the cylinder's (radial, axial) half-plane it is a rectangle: the box rule in 2D.
+      const Eigen::Vector3d d = p - point;
+      const double a = d.dot(normal);
+      Eigen::Vector3d radial = d - a * normal;
+      const double rho = radial.norm();
+      radial = rho > 1e-12 ? Eigen::Vector3d(radial / rho) : normal.unitOrthogonal();
+      const double qr = rho - radius, qa = std::abs(a) - half_length;
+      const Eigen::Vector3d along = (a >= 0.0 ? 1.0 : -1.0) * normal;
+      if (qr > 0.0 || qa > 0.0) {
+        const Eigen::Vector3d outside = std::max(qr, 0.0) * radial + std::max(qa, 0.0) * along;
+        *outward = outside.normalized();
+        return outside.norm();
+      }
+      *outward = qr > qa ? radial : along;
+      return std::max(qr, qa);
     }
     case Kind::mesh:
       return body->distance(p, outward);

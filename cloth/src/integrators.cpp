@@ -4,8 +4,10 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
+#include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/cloth/spring_kernels.h"
 #include "simulator_internal.h"
@@ -32,6 +34,14 @@ void ClothSimulator::build_pattern() {
   t.reserve(static_cast<size_t>(s.size()) * 36 + 9 * static_cast<size_t>(n));
   for (int k = 0; k < s.size(); ++k) add_spring_blocks(t, s.i[k], s.j[k], Eigen::Matrix3d::Zero());
   for (int v = 0; v < n; ++v) add_block(t, v, v, Eigen::Matrix3d::Zero());
+  const SeamSet& seams = model_.seams;
+  int idx[3];
+  double w[3];
+  for (int k = 0; k < seams.size(); ++k) {
+    seam_weights(seams, k, idx, w);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) add_block(t, idx[p], idx[q], Eigen::Matrix3d::Zero());
+  }
   system_.resize(3 * n, 3 * n);
   system_.setFromTriplets(t.begin(), t.end());
   system_.makeCompressed();
@@ -50,6 +60,13 @@ void ClothSimulator::build_pattern() {
   vertex_offsets_.resize(static_cast<size_t>(n));
   for (int v = 0; v < n; ++v)
     for (int c = 0; c < 3; ++c) vertex_offsets_[v][c] = offset(3 * v, 3 * v + c);
+  seam_offsets_.resize(static_cast<size_t>(seams.size()));
+  for (int k = 0; k < seams.size(); ++k) {
+    seam_weights(seams, k, idx, w);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q)
+        for (int c = 0; c < 3; ++c) seam_offsets_[k][9 * p + 3 * q + c] = offset(3 * idx[p], 3 * idx[q] + c);
+  }
 }
 
 // Writes A = M (1 + h c) + h² K (+ h D for spring damping when with_spring_damping) into system_,
@@ -88,6 +105,26 @@ void ClothSimulator::assemble_system(bool with_spring_damping, Eigen::VectorXd* 
       put(spring_offsets_[k], 2, -B);
       put(spring_offsets_[k], 3, -B);
     }
+  }
+  // Seams: K = w wᵀ ⊗ S over the stitch's particles (a, b0, b1), S = −∂F/∂c (seams.h).
+  const SeamSet& seams = model_.seams;
+  int idx[3];
+  double w[3];
+  for (int k = 0; k < seams.size(); ++k) {
+    seam_weights(seams, k, idx, w);
+    Eigen::Matrix3d S;
+    stitch_force(seams, k, seam_gap(seams, k, x_), &S);
+    if (Kv) {
+      const Eigen::Vector3d Swv = S * (w[0] * row(v_, idx[0]) + w[1] * row(v_, idx[1]) + w[2] * row(v_, idx[2]));
+      for (int p = 0; p < 3; ++p) Kv->segment<3>(3 * idx[p]) += w[p] * Swv;
+    }
+    S *= h * h;
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) {
+        if (pinned_[idx[p]] || pinned_[idx[q]]) continue;
+        for (int c = 0; c < 3; ++c)
+          for (int r3 = 0; r3 < 3; ++r3) values[seam_offsets_[k][9 * p + 3 * q + c] + r3] += w[p] * w[q] * S(r3, c);
+      }
   }
   for (int i = 0; i < n; ++i) {
     const double diag = pinned_[i] ? 1.0 : model_.mass(i) * (1.0 + h * options_.air_damping);
@@ -144,8 +181,10 @@ void ClothSimulator::step_implicit(StepResult& r) {
   const double h = dt_;
   const int n = static_cast<int>(x_.rows());
   Eigen::VectorXd Kv;
+  const auto start = std::chrono::steady_clock::now();
   assemble_system(true, &Kv);
   const Eigen::MatrixX3d f0 = forces();
+  r.force_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   Eigen::VectorXd rhs(3 * n);
   for (int i = 0; i < n; ++i) {
     rhs.segment<3>(3 * i) = pinned_[i] ? Eigen::Vector3d::Zero()
@@ -181,7 +220,7 @@ double ClothSimulator::incremental_potential(const Eigen::MatrixX3d& x, const Ei
   }
   const SpringSet& s = model_.springs;
   for (int k = 0; k < s.size(); ++k) g += spring_energy(s.law(k), s.rest_length[k], row(x, s.i[k]), row(x, s.j[k]));
-  return g;
+  return g + seam_energy(model_.seams, x);
 }
 
 void ClothSimulator::step_newton(StepResult& r) {
@@ -202,6 +241,7 @@ void ClothSimulator::step_newton(StepResult& r) {
       f.row(s.i[k]) += fi.transpose();
       f.row(s.j[k]) -= fi.transpose();
     }
+    add_seam_forces(model_.seams, x_, f);
     Eigen::VectorXd rhs(3 * n);
     for (int i = 0; i < n; ++i) {
       const double m = model_.mass(i);

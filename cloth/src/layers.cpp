@@ -32,6 +32,16 @@ void append_springs(SpringSet& to, const SpringSet& from, int offset) {
   }
 }
 
+void append_seams(SeamSet& to, const SeamSet& from, int offset) {
+  for (int k = 0; k < from.size(); ++k) {
+    to.a.push_back(from.a[k] + offset);
+    to.b0.push_back(from.b0[k] + offset);
+    to.b1.push_back(from.b1[k] + offset);
+    to.t.push_back(from.t[k]);
+    to.stiffness.push_back(from.stiffness[k]);
+  }
+}
+
 int layer_count(const ClothModel& m) { return m.layer.size() ? m.layer.maxCoeff() + 1 : 1; }
 
 }  // namespace
@@ -80,6 +90,8 @@ ClothModel make_double_layer(const ClothModel& single, const LayerThickness& t) 
   d.skipped_zero_length_springs = single.skipped_zero_length_springs;
   append_springs(d.springs, single.springs, 0);
   append_springs(d.springs, single.springs, nv);
+  append_seams(d.seams, single.seams, 0);  // both shells are sewn alike
+  append_seams(d.seams, single.seams, nv);
 
   // The layer's own coefficients at each vertex: the mean spring constant [N/m] of its structural
   // springs (k_rest and k_knee are already per spring, k = c A / L0²).
@@ -167,6 +179,7 @@ ClothModel stack_layers(const std::vector<ClothModel>& garments, double separati
     m.faces.middleRows(nf, g.faces.rows()) = g.faces.array() + offsets[k];
     nf += g.faces.rows();
     append_springs(m.springs, g.springs, offsets[k]);
+    append_seams(m.seams, g.seams, offsets[k]);
     m.skipped_zero_area_faces += g.skipped_zero_area_faces;
     m.skipped_zero_length_springs += g.skipped_zero_length_springs;
     if (k > 0) base = m.layer_offset.back() + separation;

@@ -12,6 +12,7 @@
 #include <Eigen/SparseCholesky>
 #include <cmath>
 
+#include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/cloth/stiffness_law.h"
 #include "simulator_internal.h"
@@ -60,6 +61,14 @@ void ClothSimulator::step_projective(StepResult& r) {
       couple(j, j, w);
       couple(i, j, -w);
       couple(j, i, -w);
+    }
+    // A stitch is the quadratic ½ k |Σ w x − d|² with d its soft-threshold target (seams.h).
+    int idx[3];
+    double sw[3];
+    for (int k = 0; k < model_.seams.size(); ++k) {
+      seam_weights(model_.seams, k, idx, sw);
+      for (int p = 0; p < 3; ++p)
+        for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], model_.seams.stiffness[k] * sw[p] * sw[q]);
     }
     Eigen::SparseMatrix<double> A(n, n);
     A.setFromTriplets(a.begin(), a.end());
@@ -111,6 +120,15 @@ void ClothSimulator::step_projective(StepResult& r) {
       const Eigen::Vector3d d = (w * target / e.norm()) * e;
       if (!pinned_[j]) rhs.row(j) += d.transpose();
       if (!pinned_[i]) rhs.row(i) -= d.transpose();
+    }
+    int idx[3];
+    double sw[3];
+    for (int k = 0; k < model_.seams.size(); ++k) {
+      seam_weights(model_.seams, k, idx, sw);
+      const Eigen::RowVector3d d =
+          model_.seams.stiffness[k] * stitch_target(model_.seams, k, seam_gap(model_.seams, k, x_)).transpose();
+      for (int p = 0; p < 3; ++p)
+        if (!pinned_[idx[p]]) rhs.row(idx[p]) += sw[p] * d;
     }
     const Eigen::MatrixX3d next = projective_->solver.solve(rhs);  // global step
     const double moved = (next - x_).rowwise().norm().maxCoeff();

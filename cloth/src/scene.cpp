@@ -8,6 +8,7 @@
 #include <set>
 
 #include "dresskit/cloth/mesh_distance.h"
+#include "dresskit/cloth/seams.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/thickness/thickness.h"
@@ -102,8 +103,138 @@ ClothModel make_chain(const Reader& c, double scale, double total_mass) {
 struct Garment {
   ClothModel model;
   std::vector<int> pins;  ///< this garment's vertices (both layers of a double layer)
+  PinMotion pin_motion;   ///< driven pins, this garment's vertices
   GarmentInfo info;
 };
+
+/// The panels of a grid or panels cloth: first vertex and vertices per side of each.
+struct Panel {
+  int first = 0, nx = 0, ny = 0;
+};
+
+/// Reads one grid object into a mesh.
+TriangleMesh read_grid(const Reader& g, double scale, Panel& panel) {
+  g.allow({"size", "resolution", "center", "normal"});
+  const Eigen::Vector2d size = g.vector<2>("size", Eigen::Vector2d(1, 1)) * scale;
+  const Eigen::Vector2d res = g.vector<2>("resolution", Eigen::Vector2d(32, 32));
+  if (res.minCoeff() < 2 || res.maxCoeff() > 4096 || res != res.array().round().matrix()) {
+    g.fail("must be two whole numbers 2–4096", "resolution");
+  }
+  if (size.minCoeff() <= 0) g.fail("must be positive", "size");
+  panel.nx = static_cast<int>(res.x());
+  panel.ny = static_cast<int>(res.y());
+  return make_grid(size, res.cast<int>(), g.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
+                   g.vector<3>("normal", Eigen::Vector3d::UnitY()));
+}
+
+/// Vertex indices of a cloth as written in a scene: a vertex index; for a grid [i, j]; for panels
+/// [panel, i, j]. Each is checked against the cloth's vertex count.
+class IndexReader {
+ public:
+  IndexReader(const Reader& cloth, std::vector<Panel> panels, int vertices)
+      : cloth_(cloth), panels_(std::move(panels)), vertices_(vertices) {}
+  int operator()(const json& p, const char* key) const {
+    int index = -1;
+    const bool grid = panels_.size() == 1 && panels_[0].nx > 0;
+    if (p.is_number_integer()) {
+      index = p.get<int>();
+    } else if (p.is_array() && (p.size() == 2 || p.size() == 3) && !panels_.empty() && grid == (p.size() == 2)) {
+      for (const json& e : p)
+        if (!e.is_number_integer()) cloth_.fail("grid indices must be whole numbers", key);
+      const int panel = p.size() == 3 ? p[0].get<int>() : 0;
+      const int i = p[p.size() - 2].get<int>(), j = p[p.size() - 1].get<int>();
+      if (panel < 0 || panel >= static_cast<int>(panels_.size())) {
+        cloth_.fail("panel " + std::to_string(panel) + " is out of range", key);
+      }
+      const Panel& q = panels_[panel];
+      if (i < 0 || i >= q.nx || j < 0 || j >= q.ny) {
+        cloth_.fail("grid index [" + std::to_string(i) + ", " + std::to_string(j) + "] is out of range", key);
+      }
+      index = q.first + j * q.nx + i;
+    } else {
+      cloth_.fail(panels_.empty() ? "entries must be vertex indices"
+                  : grid          ? "entries must be [i, j] grid indices or vertex indices"
+                                  : "entries must be [panel, i, j] indices or vertex indices",
+                  key);
+    }
+    if (index < 0 || index >= vertices_) {
+      cloth_.fail("vertex " + std::to_string(index) + " is out of range (" + std::to_string(vertices_) + " vertices)", key);
+    }
+    return index;
+  }
+  /// A chain: an array of indices, or {"panel": p, "side": "left|right|bottom|top", "reverse": b}
+  /// (left: i = 0, right: i = nx − 1, bottom: j = 0, top: j = ny − 1, in increasing j or i).
+  std::vector<int> chain(const json& c, const char* key) const {
+    std::vector<int> out;
+    if (c.is_array()) {
+      for (const json& p : c) out.push_back((*this)(p, key));
+      return out;
+    }
+    if (!c.is_object() || panels_.empty() || panels_[0].nx == 0) {
+      cloth_.fail("a chain is an array of indices, or {panel, side, reverse} on a grid or panels", key);
+    }
+    const Reader r(cloth_.file(), c, cloth_.name(key));
+    r.allow({"panel", "side", "reverse"});
+    const int panel = static_cast<int>(r.number("panel", 0, 0, static_cast<double>(panels_.size()) - 1));
+    const Panel& q = panels_[panel];
+    const std::string side = r.text("side", "");
+    if (side == "left" || side == "right") {
+      for (int j = 0; j < q.ny; ++j) out.push_back(q.first + j * q.nx + (side == "left" ? 0 : q.nx - 1));
+    } else if (side == "bottom" || side == "top") {
+      for (int i = 0; i < q.nx; ++i) out.push_back(q.first + (side == "bottom" ? 0 : q.ny - 1) * q.nx + i);
+    } else {
+      r.fail("must be left, right, bottom or top", "side");
+    }
+    if (r.boolean("reverse", false)) std::reverse(out.begin(), out.end());
+    return out;
+  }
+
+ private:
+  const Reader& cloth_;
+  std::vector<Panel> panels_;
+  int vertices_;
+};
+
+/// "seams": [{"pairs": [[A, B], ...]} | {"chains": [CHAIN_A, CHAIN_B]}, optional "stiffness" [N/m]
+/// and "max_force" [N] or "max_acceleration" [m/s²]] (defaults: seams.h, 20 m/s²).
+void read_seams(const Reader& cloth, const IndexReader& index, ClothModel& model) {
+  const json& list = cloth.at("seams");
+  if (!list.is_array()) cloth.fail("must be an array", "seams");
+  const double stiffness = default_stitch_stiffness(model.springs);
+  const int nv = static_cast<int>(model.rest_positions.rows());
+  for (std::size_t n = 0; n < list.size(); ++n) {
+    const std::string name = "seams[" + std::to_string(n) + "]";
+    const Reader seam(cloth.file(), list[n], cloth.name(name));
+    seam.allow({"pairs", "chains", "stiffness", "max_force", "max_acceleration"});
+    if (seam.has("max_force") && seam.has("max_acceleration")) seam.fail("give max_force or max_acceleration, not both");
+    const StitchLaw k{seam.number("stiffness", stiffness, 1e-9, 1e12), seam.number("max_force", 1.0, 1e-12, 1e9)};
+    const int first = model.seams.size();
+    try {
+      if (seam.has("pairs") == seam.has("chains")) seam.fail("exactly one of pairs or chains is needed");
+      if (seam.has("pairs")) {
+        const json& pairs = seam.at("pairs");
+        if (!pairs.is_array() || pairs.empty()) seam.fail("must be a non-empty array of [A, B] pairs", "pairs");
+        std::vector<std::array<int, 2>> p;
+        for (const json& pair : pairs) {
+          if (!pair.is_array() || pair.size() != 2) seam.fail("each pair must be [A, B]", "pairs");
+          p.push_back({index(pair[0], "seams"), index(pair[1], "seams")});
+        }
+        add_seam_pairs(model.seams, p, nv, k);
+      } else {
+        const json& chains = seam.at("chains");
+        if (!chains.is_array() || chains.size() != 2) seam.fail("must be two chains", "chains");
+        add_seam_chains(model.seams, model.rest_positions, index.chain(chains[0], "seams"),
+                        index.chain(chains[1], "seams"), k);
+      }
+      if (!seam.has("max_force"))
+        cap_stitches_by_acceleration(model.seams, first, model.mass, seam.number("max_acceleration", 20.0, 1e-9, 1e9));
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      if (what.rfind(cloth.file(), 0) == 0) throw;  // already names the file
+      seam.fail(what);
+    }
+  }
+}
 
 /// "thickness": "heat" | {"t_skin", "t_env", "time", "threshold", "solidity", "composition"} (by heat
 /// conduction through the fabric's fibres or the given ones, thickness/) | {"mm", "min_mm", "max_mm"}
@@ -154,8 +285,8 @@ LayerThickness read_thickness(const Reader& cloth, const Fabric& fabric) {
 }
 
 Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) {
-  cloth.allow({"grid", "mesh", "chain", "fabric", "fabric_file", "pins", "total_mass", "warp",
-               "bending_springs", "stiffness", "thickness"});
+  cloth.allow({"grid", "panels", "mesh", "chain", "fabric", "fabric_file", "pins", "pin_motion", "total_mass",
+               "warp", "bending_springs", "stiffness", "thickness", "seams"});
   Garment garment;
   ClothModel& model = garment.model;
   // Fabric: built-in by name, or by name from a user file.
@@ -173,22 +304,32 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
   build.total_mass = cloth.number("total_mass", 0.0, 0.0, 1e6);
   build.warp_direction = cloth.vector<3>("warp", Eigen::Vector3d::UnitX());
   build.bending_springs = cloth.boolean("bending_springs", true);
-  const int shapes = cloth.has("grid") + cloth.has("mesh") + cloth.has("chain");
-  if (shapes != 1) cloth.fail("exactly one of grid, mesh or chain is needed");
-  int nx = 0;
+  const int shapes = cloth.has("grid") + cloth.has("panels") + cloth.has("mesh") + cloth.has("chain");
+  if (shapes != 1) cloth.fail("exactly one of grid, panels, mesh or chain is needed");
+  std::vector<Panel> panels;
   if (cloth.has("grid")) {
-    const Reader g = cloth.object("grid");
-    g.allow({"size", "resolution", "center", "normal"});
-    const Eigen::Vector2d size = g.vector<2>("size", Eigen::Vector2d(1, 1)) * scale;
-    const Eigen::Vector2d res = g.vector<2>("resolution", Eigen::Vector2d(32, 32));
-    if (res.minCoeff() < 2 || res.maxCoeff() > 4096 || res != res.array().round().matrix()) {
-      g.fail("must be two whole numbers 2–4096", "resolution");
+    panels.emplace_back();
+    model = build_cloth(read_grid(cloth.object("grid"), scale, panels[0]), fabric, build);
+  } else if (cloth.has("panels")) {
+    // Flat panels of one garment (a sewing pattern's pieces), one cloth: vertices panel after panel.
+    const json& list = cloth.at("panels");
+    if (!list.is_array() || list.empty()) cloth.fail("must be a non-empty array of grids", "panels");
+    TriangleMesh all;
+    for (std::size_t k = 0; k < list.size(); ++k) {
+      Panel p;
+      p.first = static_cast<int>(all.V.rows());
+      const TriangleMesh m = read_grid(Reader(cloth.file(), list[k], cloth.name("panels[" + std::to_string(k) + "]")), scale, p);
+      panels.push_back(p);
+      TriangleMesh joined;
+      joined.V.resize(all.V.rows() + m.V.rows(), 3);
+      joined.V << all.V, m.V;
+      joined.F.resize(all.F.rows() + m.F.rows(), 3);
+      joined.F << all.F, (m.F.array() + p.first).matrix();
+      joined.quads.resize(all.quads.rows() + m.quads.rows(), 4);
+      joined.quads << all.quads, (m.quads.array() + p.first).matrix();
+      all = std::move(joined);
     }
-    if (size.minCoeff() <= 0) g.fail("must be positive", "size");
-    nx = static_cast<int>(res.x());
-    const TriangleMesh mesh = make_grid(size, res.cast<int>(), g.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
-                                        g.vector<3>("normal", Eigen::Vector3d::UnitY()));
-    model = build_cloth(mesh, fabric, build);
+    model = build_cloth(all, fabric, build);
   } else if (cloth.has("mesh")) {
     LoadOptions load;
     load.units.metres_per_unit = scale;
@@ -215,28 +356,26 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
   }
   if (cloth.has("stiffness") && !cloth.has("chain")) cloth.fail("only a chain takes an explicit stiffness", "stiffness");
   const int nv = static_cast<int>(model.rest_positions.rows());
+  const IndexReader index(cloth, panels, nv);
   if (cloth.has("pins")) {
     const json& pins = cloth.at("pins");
     if (!pins.is_array()) cloth.fail("must be an array", "pins");
-    for (const json& p : pins) {
-      int index = -1;
-      if (nx > 0 && p.is_array() && p.size() == 2 && p[0].is_number_integer() && p[1].is_number_integer()) {
-        const int i = p[0].get<int>(), jj = p[1].get<int>();
-        if (i < 0 || i >= nx || jj < 0 || jj >= nv / nx) {
-          cloth.fail("grid index [" + std::to_string(i) + ", " + std::to_string(jj) + "] is out of range", "pins");
-        }
-        index = jj * nx + i;
-      } else if (p.is_number_integer()) {
-        index = p.get<int>();
-      } else {
-        cloth.fail(nx > 0 ? "entries must be [i, j] grid indices" : "entries must be vertex indices", "pins");
-      }
-      if (index < 0 || index >= nv) {
-        cloth.fail("vertex " + std::to_string(index) + " is out of range (" + std::to_string(nv) + " vertices)", "pins");
-      }
-      garment.pins.push_back(index);
-    }
+    for (const json& p : pins) garment.pins.push_back(index(p, "pins"));
   }
+  if (cloth.has("pin_motion")) {
+    const Reader m = cloth.object("pin_motion");
+    m.allow({"pins", "axis", "center", "turns_per_second", "velocity", "until"});
+    PinMotion& motion = garment.pin_motion;
+    if (!m.has("pins")) m.fail("needs the pins it drives (indices, or {panel, side})", "pins");
+    motion.particles = index.chain(m.at("pins"), "pin_motion");
+    motion.axis = m.vector<3>("axis", motion.axis);
+    if (motion.axis.norm() < 1e-12) m.fail("must not be zero", "axis");
+    motion.centre = m.vector<3>("center", motion.centre) * scale;
+    motion.turns_per_second = m.number("turns_per_second", 0.0, -1e3, 1e3);
+    motion.velocity = m.vector<3>("velocity", motion.velocity) * scale;
+    motion.until = m.number("until", motion.until, 0.0, 1e30);
+  }
+  if (cloth.has("seams")) read_seams(cloth, index, model);
   if (cloth.has("thickness")) {
     if (model.faces.rows() == 0) cloth.fail("a chain cannot have a thickness", "thickness");
     garment.info.double_layer = true;
@@ -244,6 +383,8 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
     model = make_double_layer(model, garment.info.thickness);
     const std::size_t n = garment.pins.size();
     for (std::size_t k = 0; k < n; ++k) garment.pins.push_back(garment.pins[k] + nv);
+    const std::size_t driven = garment.pin_motion.particles.size();
+    for (std::size_t k = 0; k < driven; ++k) garment.pin_motion.particles.push_back(garment.pin_motion.particles[k] + nv);
   }
   return garment;
 }
@@ -310,6 +451,11 @@ ClothScene load_cloth_scene(const std::string& path) {
   scene.model = garments.size() == 1 ? std::move(models[0]) : stack_layers(models, separation);
   for (std::size_t k = 0; k < garments.size(); ++k) {
     for (int p : garments[k].pins) scene.pins.push_back(p + first[k]);
+    if (!garments[k].pin_motion.particles.empty()) {
+      if (!scene.pin_motion.particles.empty()) root.fail("only one cloth may have a pin_motion", "cloths");
+      scene.pin_motion = garments[k].pin_motion;
+      for (int& p : scene.pin_motion.particles) p += first[k];
+    }
     GarmentInfo info = garments[k].info;
     info.first_vertex = first[k];
     info.vertices = first[k + 1] - first[k];
@@ -317,6 +463,8 @@ ClothScene load_cloth_scene(const std::string& path) {
   }
   scene.fabric_name = scene.garments[0].fabric;
   scene.faces = scene.model.faces;
+  // Cloth–cloth collisions are on for every cloth with faces unless the scene says otherwise.
+  scene.simulation.self_collision = scene.faces.rows() > 0;
 
   if (root.has("colliders")) {
     if (!root.at("colliders").is_array()) root.fail("must be an array", "colliders");
@@ -336,12 +484,17 @@ ClothScene load_cloth_scene(const std::string& path) {
         c.allow({"type", "center", "half_size", "friction"});
         scene.simulation.colliders.push_back(Collider::box(c.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
                                                            c.vector<3>("half_size", Eigen::Vector3d::Zero()) * scale, friction));
+      } else if (type == "cylinder") {
+        c.allow({"type", "center", "axis", "radius", "half_length", "friction"});
+        scene.simulation.colliders.push_back(Collider::cylinder(
+            c.vector<3>("center", Eigen::Vector3d::Zero()) * scale, c.vector<3>("axis", Eigen::Vector3d::UnitY()),
+            c.number("radius", 0.0, 1e-9, 1e9) * scale, c.number("half_length", 0.0, 1e-9, 1e9) * scale, friction));
       } else if (type == "mesh") {
         c.allow({"type", "path", "units", "up", "translate", "friction", "static_friction", "penalty", "cell", "band"});
         scene.simulation.colliders.push_back(read_mesh_collider(c, folder, scale));
         scene.simulation.colliders.back().friction = friction;
       } else {
-        c.fail("'" + type + "' is not sphere, plane, box or mesh", "type");
+        c.fail("'" + type + "' is not sphere, plane, box, cylinder or mesh", "type");
       }
       if (c.has("static_friction"))
         scene.simulation.colliders.back().static_friction = c.number("static_friction", 0.0, 0.0, 10.0);
@@ -355,7 +508,8 @@ ClothScene load_cloth_scene(const std::string& path) {
              "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
              "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard",
-             "projective_iterations"});
+             "projective_iterations", "self_collision", "cloth_thickness", "cloth_friction", "seam_tolerance",
+             "weld_seams"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -385,6 +539,12 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
     o.layer_order_guard = s.boolean("layer_order_guard", o.layer_order_guard);
     o.projective_iterations = static_cast<int>(s.number("projective_iterations", o.projective_iterations, 1, 10000));
+    o.self_collision = s.boolean("self_collision", o.self_collision);
+    o.self_collision_options.thickness =
+        s.number("cloth_thickness", o.self_collision_options.thickness / scale, 1e-9, 1.0) * scale;
+    o.self_collision_options.friction = s.number("cloth_friction", o.self_collision_options.friction, 0.0, 10.0);
+    o.seam_tolerance = s.number("seam_tolerance", o.seam_tolerance / scale, 1e-9, 1.0) * scale;
+    scene.weld_seams = s.boolean("weld_seams", scene.weld_seams);
   }
   check_options(scene.simulation);
   return scene;

@@ -3,10 +3,13 @@
 #include <algorithm>
 #include <cassert>
 #include <chrono>
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
 
+#include "dresskit/cloth/geometry.h"
 #include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/spring_kernels.h"
 #include "dresskit/mesh/errors.h"
 #include "simulator_internal.h"
@@ -61,6 +64,11 @@ void check_options(const SimulationOptions& o) {
   need(std::isfinite(o.newton_tolerance) && o.newton_tolerance > 0.0, "newton_tolerance: must be positive");
   need(std::isfinite(o.dt_min) && o.dt_min > 0.0 && o.dt_min <= o.dt, "dt_min: must be positive and at most dt");
   need(std::isfinite(o.max_strain_change) && o.max_strain_change > 0.0, "max_strain_change: must be positive");
+  const SelfCollisionOptions& sc = o.self_collision_options;
+  need(std::isfinite(sc.thickness) && sc.thickness > 0.0, "cloth_thickness: must be positive");
+  need(std::isfinite(sc.friction) && sc.friction >= 0.0, "cloth_friction: must be ≥ 0");
+  need(sc.impulse_passes > 0 && sc.zone_passes > 0, "self-collision passes: must be positive");
+  need(std::isfinite(o.seam_tolerance) && o.seam_tolerance > 0.0, "seam_tolerance: must be positive");
 }
 
 ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
@@ -81,6 +89,15 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   for (std::size_t k = 0; k < inv_rest_.size(); ++k) inv_rest_[k] = 1.0 / model_.springs.rest_length[k];
   assert(model_.layer.maxCoeff() < static_cast<int>(model_.layer_offset.size()));
   set_pinned({});
+  const int n = static_cast<int>(x_.rows());
+  for (int k = 0; k < model_.seams.size(); ++k) {
+    for (int p : {model_.seams.a[k], model_.seams.b0[k], model_.seams.b1[k]})
+      if (p < 0 || p >= n) throw InputError("seams: particle " + std::to_string(p) + " is out of range");
+  }
+  sewn_.assign(static_cast<std::size_t>(model_.seams.size()), 0);
+  joined_ = seam_representatives(model_.seams, n);
+  if (options_.self_collision && model_.faces.rows() > 0)
+    self_ = std::make_shared<SelfCollision>(model_.faces, n, joined_, options_.self_collision_options);
   find_contacts();
 }
 
@@ -94,7 +111,42 @@ void ClothSimulator::set_pinned(const std::vector<int>& vertices) {
     pinned_[p] = true;
     v_.row(p).setZero();
   }
+  inverse_mass_ = model_.mass.cwiseInverse();
+  for (int p = 0; p < x_.rows(); ++p)
+    if (pinned_[p] || !(model_.mass(p) > 0.0)) inverse_mass_(p) = 0.0;
 }
+
+void ClothSimulator::set_pin_motion(const PinMotion& motion) {
+  std::vector<int> pins;
+  for (int p = 0; p < x_.rows(); ++p)
+    if (pinned_[p]) pins.push_back(p);
+  pins.insert(pins.end(), motion.particles.begin(), motion.particles.end());
+  set_pinned(pins);
+  if (!motion.axis.allFinite() || motion.axis.norm() < 1e-12 || !motion.centre.allFinite() ||
+      !motion.velocity.allFinite() || !std::isfinite(motion.turns_per_second) || !(motion.until >= 0.0)) {
+    throw InputError("pin_motion: axis must be a direction; centre, velocity, rate finite; until ≥ 0");
+  }
+  pin_motion_ = motion;
+  pin_motion_.axis.normalize();
+  pin_start_.resize(static_cast<Eigen::Index>(motion.particles.size()), 3);
+  for (std::size_t k = 0; k < motion.particles.size(); ++k) pin_start_.row(static_cast<Eigen::Index>(k)) = x_.row(motion.particles[k]);
+}
+
+// Driven pins at time t; their velocity is the move over the step.
+void ClothSimulator::move_pins(double t) {
+  if (pin_motion_.particles.empty()) return;
+  const PinMotion& m = pin_motion_;
+  const double s = std::min(t, m.until);
+  const Eigen::Matrix3d R = Eigen::AngleAxisd(2.0 * M_PI * m.turns_per_second * s, m.axis).toRotationMatrix();
+  for (std::size_t k = 0; k < m.particles.size(); ++k) {
+    const int p = m.particles[k];
+    const Eigen::Vector3d next = m.centre + R * (pin_start_.row(static_cast<Eigen::Index>(k)).transpose() - m.centre) + s * m.velocity;
+    v_.row(p) = (next.transpose() - x_.row(p)) / dt_;
+    x_.row(p) = next.transpose();
+  }
+}
+
+int ClothSimulator::intersections() const { return count_intersections(x_, model_.faces, joined_); }
 
 void ClothSimulator::set_state(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& v) {
   assert(x.rows() == x_.rows() && v.rows() == v_.rows());
@@ -153,6 +205,7 @@ void ClothSimulator::add_spring_forces(const Eigen::MatrixX3d& x, const Eigen::M
   else if (damping) spring_loop<true, false>(s, inv_rest_, x, v, beyond, c, f);
   else if (dynamic) spring_loop<false, true>(s, inv_rest_, x, v, beyond, c, f);
   else spring_loop<false, false>(s, inv_rest_, x, v, beyond, c, f);
+  add_seam_forces(model_.seams, x, f);
 }
 
 Eigen::MatrixX3d ClothSimulator::forces() const {
@@ -213,6 +266,15 @@ Eigen::SparseMatrix<double> ClothSimulator::stiffness_matrix(bool clamp_geometri
                                               row(x_, s.j[k]), allowed_length(k), clamp_geometric);
     add_spring_blocks(t, s.i[k], s.j[k], -J);
   }
+  int idx[3];
+  double w[3];
+  for (int k = 0; k < model_.seams.size(); ++k) {  // w wᵀ ⊗ (−∂F/∂c)
+    seam_weights(model_.seams, k, idx, w);
+    Eigen::Matrix3d S;
+    stitch_force(model_.seams, k, seam_gap(model_.seams, k, x_), &S);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) detail::add_block(t, idx[p], idx[q], w[p] * w[q] * S);
+  }
   Eigen::SparseMatrix<double> K(3 * x_.rows(), 3 * x_.rows());
   K.setFromTriplets(t.begin(), t.end());
   return K;
@@ -222,7 +284,7 @@ double ClothSimulator::elastic_energy() const {
   const SpringSet& s = model_.springs;
   double e = 0.0;
   for (int k = 0; k < s.size(); ++k) e += spring_energy(s.law(k), s.rest_length[k], row(x_, s.i[k]), row(x_, s.j[k]));
-  return e;
+  return e + seam_energy(model_.seams, x_);
 }
 
 double ClothSimulator::kinetic_energy() const {
@@ -306,6 +368,27 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
     if (violated == 0) break;
   }
   v_ += (x_ - x_before) / dt_;
+}
+
+// Sewing: a stitch whose two points have come within the seam tolerance is sewn, and from then on
+// its points are moved together (by inverse mass, as the collision corrections), so a closed seam
+// stays closed; velocities follow the moves.
+void ClothSimulator::sew(StepResult& r) {
+  const SeamSet& s = model_.seams;
+  const Eigen::MatrixX3d before = x_;
+  int idx[4] = {0, 0, 0, 0};
+  double w[4] = {0, 0, 0, 0};
+  for (int k = 0; k < s.size(); ++k) {
+    const Eigen::Vector3d c = seam_gap(s, k, x_);
+    if (!sewn_[k]) {
+      if (c.norm() > options_.seam_tolerance) continue;
+      sewn_[k] = 1;
+      ++r.stitches_sewn;
+    }
+    seam_weights(s, k, idx, w);
+    shift_weighted_difference(x_, inverse_mass_, idx, w, -c);
+  }
+  v_ += (x_ - before) / dt_;
 }
 
 void ClothSimulator::keep_layer_order(StepResult& r) {
@@ -457,6 +540,7 @@ StepResult ClothSimulator::try_step(double dt) {
   r.dt = dt;
   dt_ = dt;
   const Eigen::MatrixX3d x0 = x_, v0 = v_;
+  move_pins(time_ + dt);
   using Clock = std::chrono::steady_clock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
@@ -478,8 +562,32 @@ StepResult ClothSimulator::try_step(double dt) {
   }
   r.constraint_seconds = since(t);
   t = Clock::now();
+  if (r.ok && model_.seams.size() > 0) sew(r);
+  r.seam_seconds = since(t);
+  t = Clock::now();
   if (r.ok && !options_.colliders.empty()) collide(x0, r);
   r.collision_seconds = since(t);
+  // Cloth–cloth last: whatever moved the particles before, the paths from x0 gain no intersection.
+  // Its corrections can move a particle resting on a collider into the margin: then the collider pass
+  // and the cloth–cloth pass run once more (the second rarely has anything to do).
+  t = Clock::now();
+  for (int round = 0; round < 2 && r.ok && self_ && x_.allFinite(); ++round) {
+    const Eigen::MatrixX3d before = x_;
+    const SelfCollisionResult s = self_->resolve(x0, x_, inverse_mass_);
+    r.self.proximity_pairs += s.proximity_pairs;
+    r.self.repulsions += s.repulsions;
+    r.self.ccd_collisions += s.ccd_collisions;
+    r.self.ccd_passes += s.ccd_passes;
+    r.self.zones += s.zones;
+    r.self.zone_particles += s.zone_particles;
+    r.self.held = r.self.held || s.held;
+    v_ += (x_ - before) / dt_;
+    if (options_.colliders.empty() || (x_ - before).cwiseAbs().maxCoeff() == 0.0) break;
+    const int pushed = r.collisions;
+    collide(x0, r);
+    if (r.collisions == pushed) break;
+  }
+  r.self_collision_seconds = since(t);
   if (r.ok && (!x_.allFinite() || !v_.allFinite())) {
     r.ok = false;
     r.failure = "non-finite state (NaN or infinity)";

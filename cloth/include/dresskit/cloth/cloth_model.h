@@ -37,6 +37,20 @@ struct SpringSet {
   int count(SpringType t) const;
 };
 
+/// Seams (methods.md §3): stitches, each pulling particle a to the point (1 − t) x_b0 + t x_b1 of
+/// an edge b0–b1 (b1 = b0 and t = 0 for a particle-to-particle stitch). With c = x_a − that point,
+/// the pull is methods.md's F = k (p2 − p1) = −k c, its magnitude capped at max_force so that a seam
+/// that starts far apart does not tear its panel's edge: energy ½ k |c|² up to |c| = c0 = max_force / k,
+/// max_force (|c| − c0/2) beyond (convex, C¹). Darts and pleats are seams within one panel
+/// (cloth/seams.h).
+struct SeamSet {
+  std::vector<int> a, b0, b1;
+  std::vector<double> t;          ///< position along b0–b1, in [0, 1]
+  std::vector<double> stiffness;  ///< k [N/m]
+  std::vector<double> max_force;  ///< [N]
+  int size() const { return static_cast<int>(a.size()); }
+};
+
 struct ClothBuildOptions {
   /// The fabric's warp direction in space; projected onto each face's plane [unitless].
   Eigen::Vector3d warp_direction = Eigen::Vector3d::UnitX();
@@ -50,6 +64,7 @@ struct ClothModel {
   Eigen::VectorXd mass;             ///< #V [kg]
   Eigen::MatrixX3i faces;           ///< #F×3, the faces kept (zero-area ones are skipped)
   SpringSet springs;
+  SeamSet seams;
   /// #V, the layer of each particle from the body outwards (0 for a single-layer cloth).
   Eigen::VectorXi layer;
   /// Per layer: the distance kept from colliders beyond the collision margin [m] — the thickness of

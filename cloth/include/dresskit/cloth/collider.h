@@ -1,5 +1,5 @@
 #pragma once
-// Colliders: analytic ones (plane, sphere, axis-aligned box) and body meshes (a precomputed signed
+// Colliders: analytic ones (plane, sphere, axis-aligned box, capped cylinder) and body meshes (a precomputed signed
 // distance, cloth/mesh_distance.h), each with a signed distance, an outward normal and friction.
 #include <Eigen/Core>
 #include <memory>
@@ -10,11 +10,12 @@ namespace dresskit {
 class MeshDistance;
 
 struct Collider {
-  enum class Kind { plane, sphere, box, mesh };
+  enum class Kind { plane, sphere, box, cylinder, mesh };
   Kind kind = Kind::plane;
-  Eigen::Vector3d point = Eigen::Vector3d::Zero();     ///< plane point, sphere or box centre [m]
-  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();   ///< plane normal (unit)
-  double radius = 0.0;                                 ///< sphere radius [m]
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();     ///< plane point, sphere, box or cylinder centre [m]
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitY();   ///< plane normal, cylinder axis (unit)
+  double radius = 0.0;                                 ///< sphere or cylinder radius [m]
+  double half_length = 0.0;                            ///< cylinder: half its length along the axis [m]
   Eigen::Vector3d half_size = Eigen::Vector3d::Zero(); ///< box half extents [m]
   std::shared_ptr<const MeshDistance> body;            ///< mesh colliders: the body's distance
   double friction = 0.3;         ///< kinetic Coulomb coefficient [unitless]
@@ -29,6 +30,9 @@ struct Collider {
   static Collider plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double friction = 0.3);
   static Collider sphere(const Eigen::Vector3d& centre, double radius, double friction = 0.3);
   static Collider box(const Eigen::Vector3d& centre, const Eigen::Vector3d& half_size, double friction = 0.3);
+  /// A solid cylinder with flat caps.
+  static Collider cylinder(const Eigen::Vector3d& centre, const Eigen::Vector3d& axis, double radius,
+                           double half_length, double friction = 0.3);
   static Collider mesh(std::shared_ptr<const MeshDistance> body, double friction = 0.3);
 
   /// Signed distance [m] from p to the surface (negative inside) and the outward unit normal there.

@@ -21,4 +21,40 @@ double closest_points_of_segments(const Eigen::Vector3d& p0, const Eigen::Vector
 bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
                               const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+
+/// The first contact of two primitives moving linearly from their start (…0) to their end (…1)
+/// positions over t ∈ [0, 1] (continuous collision detection).
+struct Contact {
+  double t = -1.0;  ///< time of contact in [0, 1]; −1: none
+  /// Weights of the contact points: vertex–triangle (1, w0, w1, w2) with q = Σ w x_triangle;
+  /// edge–edge (1 − s, s, 1 − u, u). The first pair belongs to side A, the rest to side B.
+  double w[4] = {0, 0, 0, 0};
+  /// Unit normal at contact, pointing from side B towards side A at the start.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  explicit operator bool() const { return t >= 0.0; }
+};
+
+/// Vertex p against triangle (a, b, c): the earliest t where p comes closer than eta to the
+/// triangle. Candidate times are the roots of the coplanarity cubic ((b−a)×(c−a))·(p−a) = 0 in [0, 1]
+/// (found by bisection on its monotone pieces), its extrema and both ends; each is confirmed by the
+/// exact distance, so a flat sheet moving in its own plane gives no false contact.
+Contact vertex_triangle_ccd(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& a0,
+                            const Eigen::Vector3d& a1, const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
+                            const Eigen::Vector3d& c0, const Eigen::Vector3d& c1, double eta);
+
+/// Edge p–q against edge r–s, the same way (coplanarity of the four points).
+Contact edge_edge_ccd(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
+                      const Eigen::Vector3d& q1, const Eigen::Vector3d& r0, const Eigen::Vector3d& r1,
+                      const Eigen::Vector3d& s0, const Eigen::Vector3d& s1, double eta);
+
+/// Changes the weighted point difference P = Σ alpha[k] x[idx[k]] by `change`, each particle moving
+/// in proportion to alpha[k] × its inverse mass (momentum is kept when Σ alpha = 0; particles of
+/// inverse mass 0 — pinned — stay). The response of contacts and of seams closing.
+void shift_weighted_difference(Eigen::MatrixX3d& x, const Eigen::VectorXd& inverse_mass, const int idx[4],
+                               const double alpha[4], const Eigen::Vector3d& change);
+
+/// Real roots in [0, 1] of c[0] + c[1] t + c[2] t² + c[3] t³ where the sign changes, plus the
+/// interior extrema (touching roots are among them), ascending; returns how many (at most 5).
+int cubic_candidates(const double c[4], double out[5]);
+
 }  // namespace dresskit

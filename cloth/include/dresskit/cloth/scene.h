@@ -22,6 +22,8 @@ struct GarmentInfo {
 struct ClothScene {
   ClothModel model;
   std::vector<int> pins;           ///< vertex indices
+  PinMotion pin_motion;            ///< driven pins (none when its particles are empty)
+  bool weld_seams = true;          ///< output: closed particle-to-particle stitches as one vertex
   SimulationOptions simulation;
   double duration = 2.0;           ///< [s] simulated
   double fps = 24.0;               ///< frames per simulated second

@@ -11,6 +11,7 @@
 
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/collider.h"
+#include "dresskit/cloth/self_collision.h"
 
 namespace dresskit {
 
@@ -39,6 +40,13 @@ struct SimulationOptions {
   /// (cloth/layers.h, match_layers) is moved out along its nearest collider's normal (at most a tenth of the mean
   /// spring length per step), inner layers first, and loses its inward speed.
   bool layer_order_guard = true;
+  /// Cloth–cloth collisions (self-contact, layers, garments; cloth/self_collision.h) after the
+  /// collider pass, so that a state without intersections never gains one.
+  bool self_collision = false;
+  SelfCollisionOptions self_collision_options;
+  /// A stitch (ClothModel::seams) that comes within this distance is sewn: from then on the
+  /// constraint phase holds its two points together [m].
+  double seam_tolerance = 0.001;
   double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
   bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
   bool strain_limiting = false;    ///< position correction after each step
@@ -64,6 +72,17 @@ struct SimulationOptions {
   double max_strain_change = 0.05; ///< per step [unitless]
 };
 
+/// Pinned particles driven along a path: turned about `axis` through `centre` at a constant rate and
+/// moved at a constant velocity, from time 0 to `until` (then they stay).
+struct PinMotion {
+  std::vector<int> particles;
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitX();
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();  ///< [m]
+  double turns_per_second = 0.0;                     ///< [1/s], right-handed about axis
+  Eigen::Vector3d velocity = Eigen::Vector3d::Zero();  ///< [m/s]
+  double until = 1e30;                               ///< [s]
+};
+
 /// Throws InputError naming the field when an option is out of range (dt ≤ 0, negative damping, ...).
 void check_options(const SimulationOptions& options);
 
@@ -77,11 +96,15 @@ struct StepResult {
   int collisions = 0;        ///< particles pushed out of colliders in this step
   int layer_pushes = 0;      ///< particles moved out by the layer-order guard in this step
   int deep_pushes = 0;       ///< particles deeper than one push inside a collider (cloth started inside)
+  SelfCollisionResult self;  ///< cloth–cloth collisions of this step
+  int stitches_sewn = 0;     ///< stitches newly sewn (within the seam tolerance) in this step
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
-  /// Wall time of the step's phases [s]: the integrator (forces and solve), the layer guard and
-  /// length limits, and the collision pass (of the last try when adaptive stepping retried).
-  double integrate_seconds = 0.0, constraint_seconds = 0.0, collision_seconds = 0.0;
+  /// Wall time of the step's phases [s] (of the last try when adaptive stepping retried): the
+  /// integrator (forces and solve; of which forces and the system's assembly: force_seconds, implicit
+  /// Euler only), the layer guard and length limits, sewing, the collider pass and cloth–cloth collisions.
+  double integrate_seconds = 0.0, force_seconds = 0.0, constraint_seconds = 0.0, seam_seconds = 0.0,
+         collision_seconds = 0.0, self_collision_seconds = 0.0;
 };
 
 struct SettleOptions {
@@ -107,6 +130,12 @@ class ClothSimulator {
   /// Pinned vertices keep their positions exactly and have zero velocity.
   void set_pinned(const std::vector<int>& vertices);
   const std::vector<bool>& pinned() const { return pinned_; }
+  /// Drives pinned particles (they are pinned by this call); positions at time 0 are the current ones.
+  void set_pin_motion(const PinMotion& motion);
+  /// Stitches sewn so far (held together by the constraint phase), per ClothModel::seams entry.
+  const std::vector<char>& sewn() const { return sewn_; }
+  /// Edge–triangle crossings of the cloth at its current positions (seam neighbours excluded).
+  int intersections() const;
 
   StepResult step();
   /// Steps until the elastic energy and the static residual force settle (a static drape), the
@@ -154,6 +183,8 @@ class ClothSimulator {
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
   void push_out(const Collider& c, double margin, int i);
   void keep_layer_order(StepResult& r);
+  void sew(StepResult& r);
+  void move_pins(double t);
   /// Finds the particles in the colliders' penalty zones at the current positions (contacts_).
   void find_contacts();
   void add_penalty_forces(Eigen::MatrixX3d& f) const;
@@ -166,6 +197,12 @@ class ClothSimulator {
   SimulationOptions options_;
   Eigen::MatrixX3d x_, v_;
   std::vector<bool> pinned_;
+  Eigen::VectorXd inverse_mass_;  ///< 0 for pinned particles
+  std::vector<char> sewn_;        ///< per stitch
+  std::vector<int> joined_;       ///< seam representatives (cloth/seams.h)
+  std::shared_ptr<SelfCollision> self_;  ///< cloth–cloth collisions, when switched on and there are faces
+  PinMotion pin_motion_;
+  Eigen::MatrixX3d pin_start_;    ///< driven pins' positions at time 0 (rows of pin_motion_.particles)
   double time_ = 0.0;
   double dt_ = 0.0;
   int calm_steps_ = 0;
@@ -175,6 +212,7 @@ class ClothSimulator {
   Eigen::SparseMatrix<double> system_;
   std::vector<std::array<int, 12>> spring_offsets_;  ///< per spring: blocks ii, jj, ij, ji × 3 columns
   std::vector<std::array<int, 3>> vertex_offsets_;   ///< per vertex: its diagonal block's 3 columns
+  std::vector<std::array<int, 27>> seam_offsets_;    ///< per stitch: blocks (a, b0, b1)² × 3 columns
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]

@@ -1,0 +1,96 @@
+#pragma once
+// Cloth–cloth collisions: self-contact of one cloth and contact between layers and garments
+// (Bridson, Fedkiw & Anderson 2002, "Robust treatment of collisions, contact and friction for cloth
+// animation"). After a step has moved the particles from x0 (intersection-free) to x1:
+//   1. proximity: vertex–triangle and edge–edge pairs closer than the cloth thickness at x0 are
+//   kept
+//      from approaching and eased apart towards the thickness, with Coulomb friction;
+//   2. continuous collision detection on the straight paths x0 → x1: each contact gets an inelastic
+//      correction, a few passes;
+//   3. rigid impact zones (Provot 1997) for what is left: the particles of the pairs still in
+//   contact
+//      are merged into zones that move rigidly from x0 (an invertible path: no zone can cut
+//      itself), merging until no contact is left; as a last resort every free particle stays at x0.
+// So a state that starts without intersections never gains one. A bounding volume hierarchy over
+// the triangles (refitted with swept boxes each pass) finds the candidate pairs.
+#include <Eigen/Core>
+#include <vector>
+
+#include "dresskit/cloth/triangle_bvh.h"
+
+namespace dresskit {
+
+struct SelfCollisionOptions {
+  /// Distance kept between parts of the cloth that are not neighbours [m] (the proximity zone).
+  double thickness = 0.001;
+  /// Coulomb friction between cloth surfaces in proximity [unitless].
+  double friction = 0.3;
+  /// Continuous-collision passes with corrections before impact zones take over.
+  int impulse_passes = 6;
+  /// Impact-zone merges before every free particle is held at its start position.
+  int zone_passes = 64;
+};
+
+struct SelfCollisionResult {
+  int proximity_pairs = 0;  ///< vertex–triangle and edge–edge pairs within the thickness at x0
+  int repulsions = 0;       ///< of those, corrected (approaching or closer than the thickness)
+  int ccd_collisions = 0;   ///< contacts on the paths corrected by the collision passes
+  int ccd_passes = 0;
+  int zones = 0;           ///< rigid impact zones at the end (0 when the passes sufficed)
+  int zone_particles = 0;  ///< particles in them
+  bool held = false;       ///< the last resort was used: every free particle stayed at x0
+};
+
+/// Edges of a triangle list, each once (i < j), with one owning triangle each.
+struct EdgeList {
+  std::vector<int> i, j, owner;
+  Eigen::MatrixX3i face_edges;  ///< #F×3: edge k of face f joins its corners k and (k + 1) mod 3
+};
+EdgeList triangle_edges(const Eigen::MatrixX3i& F);
+
+class SelfCollision {
+ public:
+  SelfCollision() = default;
+  /// faces: the cloth's triangles; joined: a representative particle for each particle (#V) —
+  /// particles with the same representative count as one (a sewn seam), so primitives sharing one
+  /// are neighbours and never tested; empty = every particle its own.
+  SelfCollision(const Eigen::MatrixX3i& faces, int particles, std::vector<int> joined,
+                SelfCollisionOptions options = {});
+
+  /// Moves x1 so that no pair of non-neighbouring primitives comes closer than the thickness on the
+  /// way from x0 (see the file comment). inverse_mass: 0 for pinned particles (they never move).
+  SelfCollisionResult resolve(const Eigen::MatrixX3d& x0, Eigen::MatrixX3d& x1,
+                              const Eigen::VectorXd& inverse_mass);
+
+  const SelfCollisionOptions& options() const { return options_; }
+  bool empty() const { return faces_.rows() == 0; }
+  const std::vector<int>& joined() const { return rep_; }
+
+ private:
+  struct Pair {
+    int kind;  ///< 0 vertex–triangle (a = vertex, b = face), 1 edge–edge (a, b edges)
+    int a, b;
+  };
+  /// Candidate pairs whose swept boxes (x0 → x1, padded by pad) overlap.
+  void candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double pad,
+                  std::vector<Pair>& out);
+  bool vertex_in_face(int v, int f) const;
+  bool edges_touch(int e1, int e2) const;
+  void indices(const Pair& p, int idx[4]) const;
+
+  Eigen::MatrixX3i faces_;
+  EdgeList edges_;
+  std::vector<int> rep_;
+  std::vector<int> vertex_owner_;  ///< one face per particle (-1 for particles without faces)
+  Eigen::MatrixX3d lo_, hi_;       ///< per particle: its path's box, padded (candidates())
+  SelfCollisionOptions options_;
+  TriangleBvh bvh_;
+};
+
+/// Edge–triangle crossings at x of a triangle mesh (faces F), neighbours (sharing a particle, or
+/// one with the same representative in joined) excluded; brute force over a BVH, for reports and
+/// tests.
+int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
+                        const std::vector<int>& joined = {});
+
+}  // namespace dresskit
