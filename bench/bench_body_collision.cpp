@@ -1,8 +1,10 @@
-// Body collision cost: a square cloth (a cape) dropped over the gc_mean_all body (47.5k triangles)
-// with 5k, 10k and 20k particles, implicit Euler at 1/240 s; time per step split by phase
-// (integrator = forces + solve, constraints, body collision), averaged over the steps after first
-// contact. Goal (issue 7): body collision under 1 ms per step for 10k particles on one core.
-// Usage: bench_body_collision [--steps N] [--csv FILE]
+// Collision cost (issue 7): time per step split by phase — forces (and the implicit system's
+// assembly), solve, layer guard and length limits, seams, body collision, cloth–cloth collision —
+// for (1) a square denim cape dropped over the gc_mean_all body (47.5k triangles) with 5k, 10k and
+// 20k particles, and (2) the sewn tube of examples/collisions at three resolutions (its seams
+// phase). Implicit Euler; the means are over the steps after the first quarter (the cape is falling
+// before). Goal: body collision under 1 ms per step for 10k particles on one core. Usage:
+// bench_body_collision [--steps N] [--csv FILE]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -14,61 +16,139 @@
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/mesh_distance.h"
+#include "dresskit/cloth/scene.h"
+#include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/mesh/io.h"
 
 using namespace dresskit;
 
+namespace {
+
+struct Phases {
+  double forces = 0, solve = 0, limits = 0, seams = 0, body = 0, self = 0;
+  int steps = 0, failed_at = -1;
+  std::string failure;
+};
+
+Phases run(ClothSimulator& sim, int steps) {
+  Phases p;
+  for (int s = 0; s < steps; ++s) {
+    const StepResult r = sim.step();
+    if (!r.ok) {
+      p.failed_at = s;
+      p.failure = r.failure;
+      break;
+    }
+    if (s < steps / 4) continue;
+    p.forces += r.force_seconds;
+    p.solve += r.integrate_seconds - r.force_seconds;
+    p.limits += r.constraint_seconds;
+    p.seams += r.seam_seconds;
+    p.body += r.collision_seconds;
+    p.self += r.self_collision_seconds;
+    ++p.steps;
+  }
+  return p;
+}
+
+void print(std::ofstream& out, const char* scene, int n, const Phases& p, const ClothSimulator& sim,
+           int inside) {
+  const double c = p.steps ? 1e3 / p.steps : 0.0;
+  std::printf("%-6s %9d %6d %9.2f %9.2f %9.2f %9.3f %9.3f %9.2f %8.3f %6d %6d%s\n", scene, n,
+              p.steps, p.forces * c, p.solve * c, p.limits * c, p.seams * c, p.body * c, p.self * c,
+              sim.max_strain(), sim.intersections(), inside,
+              p.failed_at >= 0
+                  ? ("  failed at step " + std::to_string(p.failed_at) + ": " + p.failure).c_str()
+                  : "");
+  if (out) {
+    out << scene << ',' << n << ',' << p.steps << ',' << p.forces * c << ',' << p.solve * c << ','
+        << p.limits * c << ',' << p.seams * c << ',' << p.body * c << ',' << p.self * c << ','
+        << sim.max_strain() << ',' << sim.intersections() << ',' << inside << '\n';
+  }
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   int steps = 240;
   std::string csv;
   for (int a = 1; a < argc; ++a) {
-    if (!std::strcmp(argv[a], "--steps") && a + 1 < argc) steps = std::atoi(argv[++a]);
-    else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc) csv = argv[++a];
+    if (!std::strcmp(argv[a], "--steps") && a + 1 < argc)
+      steps = std::atoi(argv[++a]);
+    else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
+      csv = argv[++a];
   }
-  const TriangleMesh body = load_mesh(std::string(DRESSKIT_DEFAULT_DATA_DIR) + "/bodies/gc_mean_all.obj");
+  const TriangleMesh body =
+      load_mesh(std::string(DRESSKIT_DEFAULT_DATA_DIR) + "/bodies/gc_mean_all.obj");
   const auto t0 = std::chrono::steady_clock::now();
   auto distance = std::make_shared<const MeshDistance>(body);
   const double build = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("body: %d triangles; distance grid %dx%dx%d (cell %.1f mm) built in %.3f s, %.1f MB\n", body.num_faces(),
-              distance->report().grid[0], distance->report().grid[1], distance->report().grid[2],
-              distance->report().cell * 1e3, build, distance->report().memory_bytes / 1e6);
+  std::printf(
+      "body: %d triangles; distance grid %dx%dx%d (cell %.1f mm) built in %.3f s, %.1f MB\n",
+      body.num_faces(), distance->report().grid[0], distance->report().grid[1],
+      distance->report().grid[2], distance->report().cell * 1e3, build,
+      distance->report().memory_bytes / 1e6);
   std::ofstream out;
   if (!csv.empty()) {
     out.open(csv);
-    out << "particles,steps,integrate_ms,constraints_ms,collision_ms,collision_us_per_particle,max_strain\n";
+    out << "scene,particles,steps,forces_ms,solve_ms,limits_ms,seams_ms,body_collision_ms,cloth_"
+           "collision_ms,"
+           "max_strain,intersections,inside_body\n";
   }
-  std::printf("%9s %6s %13s %15s %13s %10s\n", "particles", "steps", "integrate ms", "constraints ms", "collision ms",
-              "max strain");
+  std::printf("ms per step; inside = particles inside the body by its distance at the end\n");
+  std::printf("%-6s %9s %6s %9s %9s %9s %9s %9s %9s %8s %6s %6s\n", "scene", "particles", "steps",
+              "forces", "solve", "limits", "seams", "body", "cloth", "strain", "cross", "inside");
   for (int side : {71, 100, 141}) {
-    const TriangleMesh grid = make_grid({0.8, 0.8}, {side, side}, {0.0, 1.78, 0.0}, Eigen::Vector3d::UnitY());
+    const TriangleMesh grid =
+        make_grid({0.8, 0.8}, {side, side}, {0.0, 1.78, 0.0}, Eigen::Vector3d::UnitY());
     SimulationOptions o;
     o.dt = 1.0 / 240.0;
     o.air_damping = 0.3;
+    o.strain_limiting = true;
+    o.self_collision = true;
     o.colliders.push_back(Collider::mesh(distance, 0.5));
     ClothSimulator sim(build_cloth(grid, fabric_by_name("11oz-black-denim")), o);
-    double integrate = 0, constraints = 0, collision = 0;
-    int counted = 0;
-    for (int s = 0; s < steps; ++s) {
-      const StepResult r = sim.step();
-      if (!r.ok) {
-        std::printf("  step %d failed: %s\n", s, r.failure.c_str());
-        break;
+    const Phases p = run(sim, steps);
+    int inside = 0;
+    Eigen::Vector3d n;
+    for (int i = 0; i < sim.positions().rows(); ++i)
+      inside += distance->distance(sim.positions().row(i).transpose(), &n) < 0.0;
+    print(out, "cape", side * side, p, sim, inside);
+  }
+  // The sewn tube at three resolutions: the same panels, finer grids.
+  for (int scale : {1, 2, 3}) {
+    ClothScene scene =
+        load_cloth_scene(std::string(DRESSKIT_SOURCE_DIR) + "/examples/collisions/sewn_tube.json");
+    if (scale > 1) {
+      // Rebuild the two panels with `scale`× the resolution and sew their sides again.
+      const int nx = 36 * scale + 1, ny = 40 * scale + 1;
+      TriangleMesh both;
+      const TriangleMesh top =
+          make_grid({0.36, 0.4}, {nx, ny}, {0, 0.62, 0}, Eigen::Vector3d::UnitY());
+      const TriangleMesh bottom =
+          make_grid({0.36, 0.4}, {nx, ny}, {0, 0.38, 0}, -Eigen::Vector3d::UnitY());
+      const int half = static_cast<int>(top.V.rows());
+      both.V.resize(2 * half, 3);
+      both.V << top.V, bottom.V;
+      both.F.resize(2 * top.F.rows(), 3);
+      both.F << top.F, (bottom.F.array() + half).matrix();
+      both.quads.resize(2 * top.quads.rows(), 4);
+      both.quads << top.quads, (bottom.quads.array() + half).matrix();
+      scene.model = build_cloth(both, fabric_by_name("gray-interlock"));
+      for (int side : {0, nx - 1}) {
+        std::vector<int> a, b;
+        for (int j = 0; j < ny; ++j)
+          a.push_back(j * nx + side), b.push_back(half + (ny - 1 - j) * nx + side);
+        const int first = scene.model.seams.size();
+        add_seam_chains(scene.model.seams, scene.model.rest_positions, a, b,
+                        {default_stitch_stiffness(scene.model.springs), 1.0});
+        cap_stitches_by_acceleration(scene.model.seams, first, scene.model.mass, 20.0);
       }
-      if (s < steps / 4) continue;  // falling: no contact yet
-      integrate += r.integrate_seconds;
-      constraints += r.constraint_seconds;
-      collision += r.collision_seconds;
-      ++counted;
     }
-    const int n = side * side;
-    const double c = counted ? 1e3 / counted : 0.0;
-    std::printf("%9d %6d %13.3f %15.3f %13.3f %10.3f\n", n, counted, integrate * c, constraints * c, collision * c,
-                sim.max_strain());
-    if (out) {
-      out << n << ',' << counted << ',' << integrate * c << ',' << constraints * c << ',' << collision * c << ','
-          << collision * c * 1e3 / n << ',' << sim.max_strain() << '\n';
-    }
+    ClothSimulator sim(scene.model, scene.simulation);
+    const Phases p = run(sim, steps);
+    print(out, "tube", static_cast<int>(scene.model.rest_positions.rows()), p, sim, 0);
   }
   return 0;
 }

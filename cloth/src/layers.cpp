@@ -6,6 +6,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "dresskit/cloth/geometry.h"
 #include "dresskit/mesh/errors.h"
 
 namespace dresskit {
@@ -305,12 +306,25 @@ double LayerContacts::height_below(int p, const ClothModel& m, const Eigen::Matr
 LayerOrder layer_order(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
   const LayerContacts c = match_layers(m, x, colliders);
   LayerOrder order;
+  // A particle that the heights put below the layer beneath is confirmed by a ray: out from it along
+  // its collider's normal, it must cross that layer an odd number of times (be covered by it). Where
+  // the layer beneath hangs in folds far from the collider, the nearest-normal projection can pick a
+  // fold beside the particle; the ray tells a particle in a valley between folds from one under them.
+  const double reach = 2.0 * (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
   for (int p = 0; p < x.rows(); ++p) {
     if (c.below_face[p] < 0) continue;
     ++order.checked;
     const int l = m.layer[p];
     const double tolerance = 0.25 * (m.layer_offset[l] - m.layer_offset[l - 1]);
-    if (c.distance[p] < c.height_below(p, m, x, colliders) - tolerance) ++order.violations;
+    if (c.distance[p] >= c.height_below(p, m, x, colliders) - tolerance) continue;
+    const Eigen::Vector3d from = x.row(p).transpose(), to = from + reach * c.normal.row(p).transpose();
+    int crossings = 0;
+    for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
+      const int a = m.faces(f, 0), b = m.faces(f, 1), d = m.faces(f, 2);
+      if (m.layer[a] != l - 1 || m.layer[b] != l - 1 || m.layer[d] != l - 1) continue;
+      crossings += segment_crosses_triangle(from, to, x.row(a).transpose(), x.row(b).transpose(), x.row(d).transpose());
+    }
+    order.violations += crossings % 2;
   }
   return order;
 }

@@ -569,9 +569,14 @@ StepResult ClothSimulator::try_step(double dt) {
   r.collision_seconds = since(t);
   // Cloth–cloth last: whatever moved the particles before, the paths from x0 gain no intersection.
   // Its corrections can move a particle resting on a collider into the margin: then the collider pass
-  // and the cloth–cloth pass run once more (the second rarely has anything to do).
+  // runs again, and the cloth–cloth pass after it (the second rarely has anything to do).
   t = Clock::now();
   for (int round = 0; round < 2 && r.ok && self_ && x_.allFinite(); ++round) {
+    if (round == 1) {
+      const int pushed = r.collisions;
+      collide(x0, r);
+      if (r.collisions == pushed) break;
+    }
     const Eigen::MatrixX3d before = x_;
     const SelfCollisionResult s = self_->resolve(x0, x_, inverse_mass_);
     r.self.proximity_pairs += s.proximity_pairs;
@@ -583,9 +588,6 @@ StepResult ClothSimulator::try_step(double dt) {
     r.self.held = r.self.held || s.held;
     v_ += (x_ - before) / dt_;
     if (options_.colliders.empty() || (x_ - before).cwiseAbs().maxCoeff() == 0.0) break;
-    const int pushed = r.collisions;
-    collide(x0, r);
-    if (r.collisions == pushed) break;
   }
   r.self_collision_seconds = since(t);
   if (r.ok && (!x_.allFinite() || !v_.allFinite())) {

@@ -69,7 +69,8 @@ struct LayerOrder {
 /// Layer order on analytic colliders: each particle p of layer ℓ ≥ 1 is compared with the layer
 /// beneath, interpolated at p (match_layers); p violates the order when its distance from its nearest
 /// collider is smaller than the layer beneath's there by more than a quarter of the two layers'
-/// offset difference. Without colliders nothing is checked.
+/// offset difference and the ray out from p along the collider's normal crosses the layer beneath an
+/// odd number of times (p is covered by it). Without colliders nothing is checked.
 LayerOrder layer_order(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
 
 }  // namespace dresskit

@@ -1,0 +1,246 @@
+// Cloth–cloth collisions: the path tests against brute-force sampling, the crossing count on known
+// configurations, and whole runs — sheets dropped on sheets, stacked layers on a sphere, a twisted
+// ribbon, a sewn tube — that never gain an intersection.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/geometry.h"
+#include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/scene.h"
+#include "dresskit/cloth/seams.h"
+#include "dresskit/cloth/self_collision.h"
+#include "dresskit/cloth/simulator.h"
+
+namespace dresskit {
+namespace {
+
+using V3 = Eigen::Vector3d;
+
+TEST(Ccd, CubicCandidatesFindEveryRootInTheUnitInterval) {
+  // (t − 0.2)(t − 0.5)(t − 0.9) and a double root at 0.7 ((t − 0.7)² (t + 3)).
+  const double c1[4] = {-0.09, 0.73, -1.6, 1.0};
+  double out[5];
+  const int n = cubic_candidates(c1, out);
+  for (double root : {0.2, 0.5, 0.9}) {
+    bool found = false;
+    for (int k = 0; k < n; ++k) found = found || std::abs(out[k] - root) < 1e-10;
+    EXPECT_TRUE(found) << root;
+  }
+  const double c2[4] = {1.47, -3.71, 1.6, 1.0};  // (t² − 1.4t + 0.49)(t + 3)
+  const int m = cubic_candidates(c2, out);
+  bool touching = false;
+  for (int k = 0; k < m; ++k) touching = touching || std::abs(out[k] - 0.7) < 1e-9;
+  EXPECT_TRUE(touching);  // no sign change: found as the extremum
+}
+
+TEST(Ccd, VertexThroughTriangleIsFoundWhenItCrosses) {
+  const V3 a(0, 0, 0), b(1, 0, 0), c(0, 1, 0);
+  const Contact hit =
+      vertex_triangle_ccd(V3(0.25, 0.25, 1), V3(0.25, 0.25, -1), a, a, b, b, c, c, 1e-6);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit.t, 0.5, 1e-9);
+  EXPECT_NEAR(hit.w[1], 0.5, 1e-9);               // q = 0.5 a + 0.25 b + 0.25 c
+  EXPECT_TRUE(hit.normal.isApprox(V3(0, 0, 1)));  // towards the vertex's start side
+  EXPECT_FALSE(
+      vertex_triangle_ccd(V3(0.8, 0.8, 1), V3(0.8, 0.8, -1), a, a, b, b, c, c, 1e-6));  // beside it
+  // A flat sheet moving in its own plane: the cubic is zero everywhere, no false contact.
+  EXPECT_FALSE(vertex_triangle_ccd(V3(2, 2, 0), V3(1.5, 1.5, 0), a, a, b, b, c, c, 1e-6));
+}
+
+// Random straight paths against dense sampling of the distance along them: primitives that touch
+// (the sampled distance reaches zero, to the sampling's resolution) are always reported, and
+// primitives that never come within eta never are. (In between, a near miss is reported when it is
+// within eta at a time the four points are coplanar.)
+TEST(Ccd, AgreesWithDenseSamplingOnRandomPaths) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto rnd = [&] { return V3(u(rng), u(rng), u(rng)); };
+  const double eta = 0.05;
+  const int samples = 20000;
+  int checked[2] = {0, 0}, contacts[2] = {0, 0};
+  for (int trial = 0; trial < 600; ++trial) {
+    const int kind = trial % 2;
+    V3 p0[4], p1[4];
+    for (int k = 0; k < 4; ++k) {
+      p0[k] = 0.5 * rnd();
+      p1[k] = p0[k] + 0.6 * rnd();
+    }
+    double best = 1e9;
+    for (int s = 0; s <= samples; ++s) {
+      const double t = double(s) / samples;
+      V3 q[4];
+      for (int k = 0; k < 4; ++k) q[k] = p0[k] + t * (p1[k] - p0[k]);
+      if (kind == 0) {
+        best = std::min(best, (q[0] - closest_point_on_triangle(q[0], q[1], q[2], q[3])).norm());
+      } else {
+        double a, b;
+        best =
+            std::min(best, std::sqrt(closest_points_of_segments(q[0], q[1], q[2], q[3], &a, &b)));
+      }
+    }
+    const Contact hit =
+        kind == 0 ? vertex_triangle_ccd(p0[0], p1[0], p0[1], p1[1], p0[2], p1[2], p0[3], p1[3], eta)
+                  : edge_edge_ccd(p0[0], p1[0], p0[1], p1[1], p0[2], p1[2], p0[3], p1[3], eta);
+    const double slack =
+        2.2 / samples;  // the sampled minimum overestimates by at most speed × step
+    if (best < slack) {
+      EXPECT_TRUE(hit) << "kind " << kind << " trial " << trial << " sampled " << best;
+      ++contacts[kind];
+    } else if (best > eta + slack) {
+      EXPECT_FALSE(hit) << "kind " << kind << " trial " << trial << " sampled " << best;
+    }
+    ++checked[kind];
+  }
+  EXPECT_GT(contacts[0], 10);  // the random cases do test both outcomes
+  EXPECT_GT(contacts[1], 10);
+}
+
+TEST(Intersections, CountsEdgesThroughTrianglesOnly) {
+  Eigen::MatrixX3d x(6, 3);
+  Eigen::MatrixX3i F(2, 3);
+  F << 0, 1, 2, 3, 4, 5;
+  // The triangles pierce each other: their intersection segment runs from where edge 3–4 passes
+  // through triangle 1 to where edge 1–2 passes through triangle 2.
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+      0.2, 0.2, -1, 0.2, 0.2, 1, 0.5, 2, 0;
+  EXPECT_EQ(count_intersections(x, F), 2);
+  x.bottomRows(3).col(2).array() += 2.0;  // lifted clear
+  EXPECT_EQ(count_intersections(x, F), 0);
+  // An edge and a triangle that share a particle, or particles joined by a seam, never count: with
+  // 3 sewn to 0, edge 3–4 is triangle 1's neighbour; edge 1–2 still crosses triangle 2.
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+      0.2, 0.2, -1, 0.2, 0.2, 1, 0.5, 2, 0;
+  EXPECT_EQ(count_intersections(x, F, {0, 1, 2, 0, 4, 5}), 1);
+}
+
+ClothModel sheet(int n, double height, double size = 0.5) {
+  const TriangleMesh m = make_grid({size, size}, {n, n}, {0, height, 0}, {0, 1, 0});
+  return build_cloth(m, fabric_by_name("gray-interlock"));
+}
+
+// A sheet falling fast onto a pinned one: without cloth–cloth collisions it passes through (two
+// flat sheets passing within one step never show a crossing at a step's end: the sheet is simply
+// found below), with them it never crosses and comes to rest on it about a thickness above.
+TEST(SelfCollision, FallingSheetRestsOnAPinnedSheetWithoutCrossing) {
+  for (bool on : {false, true}) {
+    SimulationOptions o;
+    o.dt = 1.0 / 240;
+    o.self_collision = on;
+    o.air_damping = 0.2;
+    ClothSimulator sim(stack_layers({sheet(15, 0.0), sheet(15, 0.02, 0.3)}, 0.0), o);
+    std::vector<int> pins;
+    for (int p = 0; p < 15 * 15; ++p) pins.push_back(p);  // the whole lower sheet
+    sim.set_pinned(pins);
+    Eigen::MatrixX3d v = sim.velocities();
+    v.bottomRows(225).col(1).setConstant(-3.0);  // 3 m/s: 12 mm per step, thicker than the gap
+    sim.set_state(sim.positions(), v);
+    int worst = 0;
+    for (int step = 0; step < 240; ++step) {
+      ASSERT_TRUE(sim.step().ok);
+      worst = std::max(worst, sim.intersections());
+    }
+    if (!on) {
+      EXPECT_LT(sim.positions().bottomRows(225).col(1).maxCoeff(), 0.0);  // fell through
+      continue;
+    }
+    EXPECT_EQ(worst, 0);
+    const double lowest = sim.positions().bottomRows(225).col(1).minCoeff();
+    EXPECT_GT(lowest, 0.0);   // above the pinned sheet
+    EXPECT_LT(lowest, 0.01);  // resting on it, not bounced away
+  }
+}
+
+// Two and three garments dropped together on a sphere (the examples/collisions scenes, coarser so
+// the test runs in seconds): the layer order holds and no triangle is crossed, checked at every
+// frame.
+TEST(SelfCollision, StackedLayersOnASphereKeepOrderAndNeverIntersect) {
+  SimulationOptions o;
+  o.dt = 1.0 / 240;
+  o.air_damping = 0.1;
+  o.self_collision = true;
+  o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
+  auto garment = [](int n, double size, double height, const char* fabric) {
+    return build_cloth(
+        make_grid(Eigen::Vector2d(size, size), Eigen::Vector2i(n, n),
+                  Eigen::Vector3d(0.01 * (n % 3), height, 0), Eigen::Vector3d::UnitY()),
+        fabric_by_name(fabric));
+  };
+  const std::vector<std::vector<ClothModel>> stacks = {
+      {garment(20, 1.0, 0.40, "ivory-rib-knit"), garment(18, 0.9, 0.45, "camel-ponte-roma")},
+      {garment(20, 1.0, 0.40, "white-swim-solid"), garment(18, 0.9, 0.44, "gray-interlock"),
+       garment(22, 1.1, 0.48, "11oz-black-denim")}};
+  for (const auto& stack : stacks) {
+    SCOPED_TRACE(stack.size());
+    ClothSimulator sim(stack_layers(stack, 0.003), o);
+    int worst_order = 0, worst_crossings = 0, checked = 0, repulsions = 0;
+    for (int step = 1; step <= 360; ++step) {  // 1.5 s: landed and settling
+      const StepResult r = sim.step();
+      ASSERT_TRUE(r.ok) << step << ": " << r.failure;
+      repulsions += r.self.repulsions;
+      if (step % 10 == 0) {  // every frame at 24 fps
+        const LayerOrder order = layer_order(sim.model(), sim.positions(), o.colliders);
+        worst_order = std::max(worst_order, order.violations);
+        checked = std::max(checked, order.checked);
+        worst_crossings = std::max(worst_crossings, sim.intersections());
+      }
+    }
+    EXPECT_GT(checked, 250);
+    EXPECT_GT(repulsions, 500);  // the layers did touch
+    EXPECT_EQ(worst_order, 0);
+    EXPECT_EQ(worst_crossings, 0);
+  }
+}
+
+TEST(SelfCollision, TwistedRibbonNeverIntersectsItself) {
+  ClothScene scene = load_cloth_scene(std::string(DRESSKIT_SOURCE_DIR) +
+                                      "/examples/collisions/twisted_ribbon.json");
+  ClothSimulator sim(scene.model, scene.simulation);
+  sim.set_pinned(scene.pins);
+  sim.set_pin_motion(scene.pin_motion);
+  int repulsions = 0, worst = 0;
+  const int steps = static_cast<int>(std::round(5.0 / scene.simulation.dt));
+  for (int step = 1; step <= steps; ++step) {
+    const StepResult r = sim.step();
+    ASSERT_TRUE(r.ok) << step << ": " << r.failure;
+    repulsions += r.self.repulsions;
+    if (step % 20 == 0) worst = std::max(worst, sim.intersections());
+  }
+  EXPECT_GT(repulsions, 500);  // it coiled onto itself
+  EXPECT_EQ(worst, 0);
+  EXPECT_LT(sim.max_strain(), 0.1 + 1e-3);
+}
+
+TEST(Seams, SewnTubeClosesEveryStitchWithinAMillimetre) {
+  ClothScene scene =
+      load_cloth_scene(std::string(DRESSKIT_SOURCE_DIR) + "/examples/collisions/sewn_tube.json");
+  ASSERT_EQ(scene.model.seams.size(), 82);  // two seams of 41 particle pairs
+  ClothSimulator sim(scene.model, scene.simulation);
+  const SeamGaps start =
+      seam_gaps(scene.model.seams, sim.positions(), scene.simulation.seam_tolerance);
+  EXPECT_NEAR(start.max, 0.24, 1e-9);
+  const int steps = static_cast<int>(std::round(0.6 / scene.simulation.dt));
+  for (int step = 0; step < steps; ++step) ASSERT_TRUE(sim.step().ok) << step;
+  const SeamGaps end =
+      seam_gaps(scene.model.seams, sim.positions(), scene.simulation.seam_tolerance);
+  EXPECT_EQ(end.closed, end.stitches);
+  EXPECT_LE(end.max, 0.001);
+  EXPECT_EQ(sim.intersections(), 0);
+  // Around the cylinder, not through it.
+  Eigen::Vector3d n;
+  for (int p = 0; p < sim.positions().rows(); ++p)
+    EXPECT_GE(scene.simulation.colliders[0].distance(sim.positions().row(p).transpose(), &n),
+              scene.simulation.collision_margin - 1e-6);
+  // Welded on output: 41 × 2 particles fewer, no face lost.
+  Eigen::MatrixX3d V;
+  Eigen::MatrixX3i F;
+  std::vector<int> to;
+  weld_seams(sim.positions(), scene.faces, scene.model.seams, scene.simulation.seam_tolerance, V, F,
+             to);
+  EXPECT_EQ(V.rows(), sim.positions().rows() - 82);
+  EXPECT_EQ(F.rows(), scene.faces.rows());
+}
+
+}  // namespace
+}  // namespace dresskit
