@@ -217,14 +217,14 @@ void read_seams(const Reader& cloth, const IndexReader& index, ClothModel& model
         std::vector<std::array<int, 2>> p;
         for (const json& pair : pairs) {
           if (!pair.is_array() || pair.size() != 2) seam.fail("each pair must be [A, B]", "pairs");
-          p.push_back({index(pair[0], "seams"), index(pair[1], "seams")});
+          p.push_back({index(pair[0], name.c_str()), index(pair[1], name.c_str())});
         }
         add_seam_pairs(model.seams, p, nv, k);
       } else {
         const json& chains = seam.at("chains");
         if (!chains.is_array() || chains.size() != 2) seam.fail("must be two chains", "chains");
-        add_seam_chains(model.seams, model.rest_positions, index.chain(chains[0], "seams"),
-                        index.chain(chains[1], "seams"), k);
+        add_seam_chains(model.seams, model.rest_positions, index.chain(chains[0], name.c_str()),
+                        index.chain(chains[1], name.c_str()), k);
       }
       if (!seam.has("max_force"))
         cap_stitches_by_acceleration(model.seams, first, model.mass, seam.number("max_acceleration", 20.0, 1e-9, 1e9));

@@ -1,15 +1,15 @@
 // dress-a-mesh end to end: exit codes, one-line errors naming the file, no partial output, inputs
 // never overwritten.
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include <sys/wait.h>
 
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "dresskit/mesh/io.h"
 #include "../mesh/mesh_fixtures.h"
+#include "cloth/collision_helpers.h"
+#include "dresskit/mesh/io.h"
 #include "test_data.h"
 #include "tools/cli_run.h"
 
@@ -91,9 +91,10 @@ TEST(Cli, BadInputsExit2WithOneLineAndNoOutput) {
   write(dir.file("nofaces.obj"), "v 0 0 0\nv 1 0 0\n");
   write(dir.file("nan.obj"), "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   write(dir.file("range.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n");
-  write(dir.file("trunc.ply"), "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
-                               "property float x\nproperty float y\nproperty float z\n"
-                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n\x01\x02");
+  write(dir.file("trunc.ply"),
+        "ply\nformat binary_little_endian 1.0\nelement vertex 3\n"
+        "property float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n\x01\x02");
   write(dir.file("mesh.txt"), "hello\n");
   for (const char* name : {"missing.obj", "empty.obj", "nofaces.obj", "nan.obj", "range.obj",
                            "trunc.ply", "mesh.txt"}) {
@@ -129,7 +130,8 @@ TEST(Cli, DemoWritesTheSceneAndAReport) {
   ASSERT_EQ(r.code, 0) << r.err;
   for (const char* name : {"mannequin", "tshirt", "skirt", "trousers"}) {
     for (const char* ext : {"obj", "ply", "glb"}) {
-      EXPECT_TRUE(std::filesystem::exists(dir.file("demo/" + std::string(name) + "." + ext))) << name << ext;
+      EXPECT_TRUE(std::filesystem::exists(dir.file("demo/" + std::string(name) + "." + ext)))
+          << name << ext;
     }
   }
   const auto report = nlohmann::json::parse(slurp(dir.file("demo/report.json")));
@@ -144,15 +146,17 @@ TEST(Cli, DemoWritesTheSceneAndAReport) {
 
 TEST(Cli, SimulateWritesResultFramesAndReport) {
   test::TempDir dir;
-  write(dir.file("chain.json"), R"({"cloth": {"chain": {"particles": 10, "spacing": 0.05, "top": [0, 1, 0],
+  write(dir.file("chain.json"),
+        R"({"cloth": {"chain": {"particles": 10, "spacing": 0.05, "top": [0, 1, 0],
     "direction": [1, 0, 0]}, "total_mass": 0.1, "stiffness": 100, "pins": [0]},
     "simulation": {"dt": 0.005, "duration": 0.5, "fps": 10, "air_damping": 0.5}})");
-  const CliRun r = run(dir, "simulate " + dir.file("chain.json") + " -o " + dir.file("out") + " --frames");
+  const CliRun r =
+      run(dir, "simulate " + dir.file("chain.json") + " -o " + dir.file("out") + " --frames");
   ASSERT_EQ(r.code, 0) << r.err;
   const auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));
-  for (const char* key : {"integrator", "dt", "steps", "frames", "wall_seconds", "seconds_per_frame",
-                          "max_strain", "mean_strain", "energy_history", "final_residual",
-                          "stopped_reason", "nan_detected"}) {
+  for (const char* key :
+       {"integrator", "dt", "steps", "frames", "wall_seconds", "seconds_per_frame", "max_strain",
+        "mean_strain", "energy_history", "final_residual", "stopped_reason", "nan_detected"}) {
     EXPECT_TRUE(report.contains(key)) << key;
   }
   EXPECT_EQ(report["steps"], 100);
@@ -178,12 +182,96 @@ TEST(Cli, SimulateBlowUpKeepsTheLastGoodStateAndExits4) {
 
 TEST(Cli, SimulateBadSceneExits2NamingTheKey) {
   test::TempDir dir;
-  write(dir.file("bad.json"), R"({"cloth": {"grid": {"size": [1, 1], "resolution": [4, 4]}, "fabric": "silk"}})");
+  write(dir.file("bad.json"),
+        R"({"cloth": {"grid": {"size": [1, 1], "resolution": [4, 4]}, "fabric": "silk"}})");
   const CliRun r = run(dir, "simulate " + dir.file("bad.json") + " -o " + dir.file("out"));
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(lines(r.err), 1);
   EXPECT_NE(r.err.find("silk"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
+// Two flat panels sewn along two sides into a tube (no gravity): the seams close, the report says
+// so, the output is welded, and the cloth never intersects itself.
+TEST(Cli, SimulateSewsPanelsAndReportsSeamsAndCrossings) {
+  test::TempDir dir;
+  write(dir.file("tube.json"), R"({"cloth": {"panels": [
+      {"size": [0.2, 0.2], "resolution": [9, 9], "center": [0, 0.06, 0], "normal": [0, 1, 0]},
+      {"size": [0.2, 0.2], "resolution": [9, 9], "center": [0, -0.06, 0], "normal": [0, -1, 0]}],
+    "fabric": "gray-interlock",
+    "seams": [{"chains": [{"panel": 0, "side": "left"}, {"panel": 1, "side": "left", "reverse": true}]},
+              {"pairs": [[[0, 8, 0], [1, 8, 8]], [[0, 8, 4], [1, 8, 4]], [[0, 8, 8], [1, 8, 0]]]}]},
+    "simulation": {"dt": 0.002, "duration": 1.0, "gravity": [0, 0, 0], "air_damping": 1.0, "strain_limit": 0.1}})");
+  const CliRun r = run(dir, "simulate " + dir.file("tube.json") + " -o " + dir.file("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));
+  EXPECT_EQ(report["seams"]["stitches"], 12);
+  EXPECT_EQ(report["seams"]["closed"], 12);
+  EXPECT_LE(report["seams"]["max_gap_mm"].get<double>(), 1.0);
+  EXPECT_TRUE(report["self_collision"].get<bool>());
+  EXPECT_EQ(report["intersections"]["max_over_frames"], 0);
+  for (const char* phase :
+       {"forces_and_assembly", "integrator", "seams", "colliders", "cloth_collisions"})
+    EXPECT_TRUE(report["phase_seconds"].contains(phase)) << phase;
+  // Welded: the 12 sewn pairs are 12 vertices fewer.
+  const TriangleMesh welded = load_mesh(dir.file("out/result.obj"));
+  EXPECT_EQ(welded.num_vertices(), 2 * 81 - 12);
+}
+
+TEST(Cli, SimulateBadSeamsExit2NamingTheSeam) {
+  test::TempDir dir;
+  const std::string panel =
+      R"("grid": {"size": [0.2, 0.2], "resolution": [5, 5]}, "fabric": "gray-interlock")";
+  for (const auto& [seams, expect] : std::vector<std::pair<std::string, std::string>>{
+           {R"([{"pairs": [[0, 99]]}])", "out of range"},
+           {R"([{"pairs": [[3, 3]]}])", "itself"},
+           {R"([{"chains": [[0, 0], [1, 2]]}])", "zero length"},
+           {R"([{"chains": [[0], [1, 2]]}])", "two particles"},
+           {R"([{"pairs": [[0, 1]], "chains": [[0, 1], [2, 3]]}])", "exactly one"}}) {
+    write(dir.file("s.json"), "{\"cloth\": {" + panel + ", \"seams\": " + seams + "}}");
+    const CliRun r = run(dir, "simulate " + dir.file("s.json") + " -o " + dir.file("out"));
+    EXPECT_EQ(r.code, 2) << seams;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find("seams[0]"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+  }
+}
+
+// A body mesh with a hole is reported and its inside taken by the named fallback; a cloth that
+// starts deep inside a closed body is pushed out a little each step without blowing up, and
+// reported.
+TEST(Cli, SimulateOpenBodyAndClothStartingInsideTheBody) {
+  test::TempDir dir;
+  TriangleMesh ball = test::sphere_mesh(Eigen::Vector3d::Zero(), 0.2, 0.02);
+  save_mesh(ball, dir.file("ball.ply"));
+  TriangleMesh open = ball;
+  open.F.conservativeResize(open.F.rows() - 4, 3);  // four faces short: boundary edges
+  save_mesh(open, dir.file("open.ply"));
+  const std::string cloth =
+      R"("cloth": {"grid": {"size": [0.16, 0.16], "resolution": [9, 9], "center": [0, 0.05, 0]},
+    "fabric": "gray-interlock"})";
+  write(dir.file("inside.json"),
+        "{" + cloth + R"(, "colliders": [{"type": "mesh", "path": "ball.ply"}],
+    "simulation": {"dt": 0.002, "duration": 1.5, "gravity": [0, 0, 0], "strain_limit": 0.1}})");
+  CliRun r = run(dir, "simulate " + dir.file("inside.json") + " -o " + dir.file("in"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto report = nlohmann::json::parse(slurp(dir.file("in/report.json")));
+  EXPECT_EQ(report["bodies"][0]["particles_inside_at_start"], 81);
+  EXPECT_EQ(report["bodies"][0]["particles_inside_at_end"], 0);
+  EXPECT_GT(report["deep_pushes"].get<int>(), 0);
+  EXPECT_LT(report["max_strain"].get<double>(), 0.11);
+  write(dir.file("open.json"),
+        "{" + cloth + R"(, "colliders": [{"type": "mesh", "path": "open.ply"}],
+    "simulation": {"dt": 0.002, "duration": 0.05}})");
+  r = run(dir, "simulate " + dir.file("open.json") + " -o " + dir.file("op"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("not closed"), std::string::npos);
+  report = nlohmann::json::parse(slurp(dir.file("op/report.json")));
+  EXPECT_FALSE(report["bodies"][0]["closed"].get<bool>());
+  EXPECT_NE(report["bodies"][0]["sign_method"].get<std::string>().find("majority"),
+            std::string::npos);
 }
 
 TEST(Cli, ThicknessPrintsTheIssuesKeysAndTheTenFabrics) {
@@ -201,7 +289,8 @@ TEST(Cli, ThicknessPrintsTheIssuesKeysAndTheTenFabrics) {
   // The same blend given as a composition gives the same thickness.
   r = run(dir, "thickness --composition cotton=0.6,polyester=0.4 --json");
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_DOUBLE_EQ(nlohmann::json::parse(r.out)["thickness_mm"].get<double>(), j["thickness_mm"].get<double>());
+  EXPECT_DOUBLE_EQ(nlohmann::json::parse(r.out)["thickness_mm"].get<double>(),
+                   j["thickness_mm"].get<double>());
 
   r = run(dir, "thickness --all-fabrics --json");
   ASSERT_EQ(r.code, 0) << r.err;
@@ -226,10 +315,11 @@ TEST(Cli, ThicknessPlotWritesCsvAndPng) {
 
 TEST(Cli, ThicknessBadInputExits2WithOneLine) {
   test::TempDir dir;
-  for (const char* args : {"--composition cotton=0.6,polyester=0.3", "--composition cotton=1.2,wool=-0.2",
-                           "--composition silk=1", "--fabric velvet", "--fabric gray-interlock --t-skin 20 --t-env 20",
-                           "--fabric gray-interlock --time 0", "--fabric gray-interlock --cells 0",
-                           "--fabric gray-interlock --threshold 50", "--fabric gray-interlock --scheme leapfrog"}) {
+  for (const char* args :
+       {"--composition cotton=0.6,polyester=0.3", "--composition cotton=1.2,wool=-0.2",
+        "--composition silk=1", "--fabric velvet", "--fabric gray-interlock --t-skin 20 --t-env 20",
+        "--fabric gray-interlock --time 0", "--fabric gray-interlock --cells 0",
+        "--fabric gray-interlock --threshold 50", "--fabric gray-interlock --scheme leapfrog"}) {
     const CliRun r = run(dir, std::string("thickness ") + args + " --plot " + dir.file("plot"));
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;
     EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
@@ -243,19 +333,23 @@ TEST(Cli, SegmentWritesLabelsInFileOrderColoursAndOnePartPerObj) {
   DRESSKIT_REQUIRE_DATA();
   test::TempDir dir;
   const std::string body = test::data_dir() + "/bodies/mh_woman_young_average.obj";
-  const CliRun r = run(dir, "segment " + body + " --units dm --up +y --parts 6 -o " + dir.file("seg"));
+  const CliRun r =
+      run(dir, "segment " + body + " --units dm --up +y --parts 6 -o " + dir.file("seg"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("arm_left"), std::string::npos) << r.out;
   const auto j = nlohmann::json::parse(slurp(dir.file("seg/labels.json")));
   const auto labels = j["vertex_labels"].get<std::vector<int>>();
   const auto names = j["part_names"].get<std::vector<std::string>>();
-  // One label per OBJ `v` line, in file order: compare with the ground truth, which is in that order.
-  const auto truth = nlohmann::json::parse(slurp(test::data_dir() + "/labels/mh_body_part_labels.json"))["labels"]
-                         .get<std::vector<std::string>>();
+  // One label per OBJ `v` line, in file order: compare with the ground truth, which is in that
+  // order.
+  const auto truth =
+      nlohmann::json::parse(slurp(test::data_dir() + "/labels/mh_body_part_labels.json"))["labels"]
+          .get<std::vector<std::string>>();
   ASSERT_EQ(labels.size(), truth.size());
   int same = 0;
   for (size_t i = 0; i < labels.size(); ++i)
-    same += labels[i] >= 0 && (names[labels[i]] == truth[i] || (names[labels[i]] == "head" && truth[i] == "head_neck"));
+    same += labels[i] >= 0 && (names[labels[i]] == truth[i] ||
+                               (names[labels[i]] == "head" && truth[i] == "head_neck"));
   EXPECT_GT(same, 0.9 * labels.size());
   EXPECT_EQ(j["parts"], 6);
   EXPECT_EQ(j["parts_chosen_by"], "given");
@@ -276,19 +370,21 @@ TEST(Cli, SegmentBadInputExits2WithOneLineAndNoOutput) {
   test::TempDir dir;
   save_mesh(fixtures::cube(1.0), dir.file("cube.obj"));
   write(dir.file("empty.obj"), "");
-  for (const std::string args : {"missing.obj", "empty.obj", "cube.obj --parts 0", "cube.obj --parts 9",
-                                 "cube.obj --affinity nearest", "cube.obj --laplacian weird",
-                                 "cube.obj --max-parts 0", "cube.obj --units furlong",
-                                 "cube.obj --bridge-gaps -1"}) {
+  for (const std::string args :
+       {"missing.obj", "empty.obj", "cube.obj --parts 0", "cube.obj --parts 9",
+        "cube.obj --affinity nearest", "cube.obj --laplacian weird", "cube.obj --max-parts 0",
+        "cube.obj --units furlong", "cube.obj --bridge-gaps -1"}) {
     const std::string first = args.substr(0, args.find(' '));
-    const CliRun r = run(dir, "segment " + dir.file(first) + args.substr(first.size()) + " -o " + dir.file("out"));
+    const CliRun r = run(
+        dir, "segment " + dir.file(first) + args.substr(first.size()) + " -o " + dir.file("out"));
     EXPECT_EQ(r.code, 2) << args << ": " << r.err;
     EXPECT_EQ(lines(r.err), 1) << args << ": " << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("out"))) << args;
   }
   // A cube in two parts works, and its labels are in the PLY file's order too.
   save_mesh(fixtures::cube(1.0), dir.file("cube.ply"));
-  const CliRun ok = run(dir, "segment " + dir.file("cube.ply") + " --parts 2 -o " + dir.file("out"));
+  const CliRun ok =
+      run(dir, "segment " + dir.file("cube.ply") + " --parts 2 -o " + dir.file("out"));
   ASSERT_EQ(ok.code, 0) << ok.err;
   const auto j = nlohmann::json::parse(slurp(dir.file("out/labels.json")));
   EXPECT_EQ(j["vertex_labels"].size(), 8u);
