@@ -355,7 +355,7 @@ ClothScene load_cloth_scene(const std::string& path) {
              "strain_limiting", "dynamic_stiffness", "air_damping", "spring_damping", "wind",
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
              "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard",
-             "projective_iterations"});
+             "projective_iterations", "time_scheme", "projective_collisions"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -385,6 +385,10 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
     o.layer_order_guard = s.boolean("layer_order_guard", o.layer_order_guard);
     o.projective_iterations = static_cast<int>(s.number("projective_iterations", o.projective_iterations, 1, 10000));
+    const std::string scheme = s.text("time_scheme", "backward_euler");
+    if (scheme == "bdf2") o.time_scheme = TimeScheme::bdf2;
+    else if (scheme != "backward_euler") s.fail("'" + scheme + "' is not backward_euler or bdf2", "time_scheme");
+    o.projective_collisions = s.boolean("projective_collisions", o.projective_collisions);
   }
   check_options(scene.simulation);
   return scene;
