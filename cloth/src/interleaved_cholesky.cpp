@@ -43,36 +43,33 @@ bool InterleavedCholesky<Scalar>::compute(const Eigen::SparseMatrix<double>& A) 
   return true;
 }
 
+/// Row r of a triangular solve as a gather: y_r = (s − Σ_k value_k y_{index_k}) / diagonal, three
+/// columns at once (y holds four per row; the fourth is padding).
+template <typename Scalar>
+inline void solve_row(int r, const double* s, const std::vector<int>& start,
+                      const std::vector<int>& index, const std::vector<Scalar>& value,
+                      double inv_diag, double* y) {
+  double s0 = s[0], s1 = s[1], s2 = s[2];
+  for (int k = start[r]; k < start[r + 1]; ++k) {
+    const double l = value[k];
+    const double* t = y + 4 * index[k];
+    s0 -= l * t[0];
+    s1 -= l * t[1];
+    s2 -= l * t[2];
+  }
+  y[4 * r] = s0 * inv_diag, y[4 * r + 1] = s1 * inv_diag, y[4 * r + 2] = s2 * inv_diag;
+}
+
 template <typename Scalar>
 void InterleavedCholesky<Scalar>::solve_in_place(double* b) const {
-  double* y =
-      work_.data();  // four per row (the fourth is padding): aligned pairs for the vector unit
+  double* y = work_.data();
   // L y' = P b, row by row.
-  for (int r = 0; r < n_; ++r) {
-    const double* br = b + 3 * perm_[r];
-    double s0 = br[0], s1 = br[1], s2 = br[2];
-    for (int k = row_start_[r]; k < row_start_[r + 1]; ++k) {
-      const double l = row_value_[k];
-      const double* t = y + 4 * row_index_[k];
-      s0 -= l * t[0];
-      s1 -= l * t[1];
-      s2 -= l * t[2];
-    }
-    const double d = inv_diag_[r];
-    y[4 * r] = s0 * d, y[4 * r + 1] = s1 * d, y[4 * r + 2] = s2 * d;
-  }
-  // Lᵀ z = y', from the last row.
+  for (int r = 0; r < n_; ++r)
+    solve_row(r, b + 3 * perm_[r], row_start_, row_index_, row_value_, inv_diag_[r], y);
+  // Lᵀ z = y', from the last row (each row's right-hand side is its own entry of y', read first).
   for (int r = n_ - 1; r >= 0; --r) {
-    double s0 = y[4 * r], s1 = y[4 * r + 1], s2 = y[4 * r + 2];
-    for (int k = col_start_[r]; k < col_start_[r + 1]; ++k) {
-      const double l = col_value_[k];
-      const double* t = y + 4 * col_index_[k];
-      s0 -= l * t[0];
-      s1 -= l * t[1];
-      s2 -= l * t[2];
-    }
-    const double d = inv_diag_[r];
-    y[4 * r] = s0 * d, y[4 * r + 1] = s1 * d, y[4 * r + 2] = s2 * d;
+    const double s[3] = {y[4 * r], y[4 * r + 1], y[4 * r + 2]};
+    solve_row(r, s, col_start_, col_index_, col_value_, inv_diag_[r], y);
   }
   for (int r = 0; r < n_; ++r)
     for (int c = 0; c < 3; ++c) b[3 * perm_[r] + c] = y[4 * r + c];

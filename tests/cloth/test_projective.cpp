@@ -37,6 +37,27 @@ Eigen::SparseMatrix<double> cloth_matrix(int n, double h) {
 
 using RowX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 
+// The 15×15 cloth's matrix at h = 1/60, random right-hand sides and Eigen's LDLT solution.
+struct SolveProblem {
+  Eigen::SparseMatrix<double> A;
+  RowX3 b;
+  Eigen::MatrixX3d expected;
+};
+
+SolveProblem solve_problem(unsigned seed) {
+  SolveProblem p;
+  p.A = cloth_matrix(15, 1.0 / 60);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  p.b.resize(p.A.rows(), 3);
+  for (int r = 0; r < p.b.rows(); ++r)
+    for (int c = 0; c < 3; ++c) p.b(r, c) = u(rng);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(p.A);
+  EXPECT_EQ(ldlt.info(), Eigen::Success);
+  p.expected = ldlt.solve(Eigen::MatrixX3d(p.b));
+  return p;
+}
+
 // A pinned particle and a free one on a linear spring (k0 = k_knee, strain below the knee): a
 // harmonic oscillator along the spring, u(t) = A cos(ω t), ω = √(k/m).
 ClothModel oscillator(double L0, double k, double m) {
@@ -82,47 +103,32 @@ double oscillator_error(TimeScheme scheme, double dt) {
 }  // namespace
 
 TEST(InterleavedCholesky, DoublePrecisionAgreesWithEigensLdlt) {
-  const Eigen::SparseMatrix<double> A = cloth_matrix(15, 1.0 / 60);
+  const SolveProblem p = solve_problem(3);
   detail::InterleavedCholesky<double> mine;
-  ASSERT_TRUE(mine.compute(A));
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-  ASSERT_EQ(ldlt.info(), Eigen::Success);
-  std::mt19937 rng(3);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  RowX3 b(A.rows(), 3);
-  for (int r = 0; r < b.rows(); ++r)
-    for (int c = 0; c < 3; ++c) b(r, c) = u(rng);
-  const Eigen::MatrixX3d expected = ldlt.solve(Eigen::MatrixX3d(b));
-  RowX3 x = b;
+  ASSERT_TRUE(mine.compute(p.A));
+  RowX3 x = p.b;
   mine.solve_in_place(x.data());
-  EXPECT_LT((Eigen::MatrixX3d(x) - expected).norm(), 1e-12 * expected.norm());
-  EXPECT_LT((A * Eigen::MatrixX3d(x) - Eigen::MatrixX3d(b)).norm(), 1e-12 * b.norm());
+  EXPECT_LT((Eigen::MatrixX3d(x) - p.expected).norm(), 1e-12 * p.expected.norm());
+  EXPECT_LT((p.A * Eigen::MatrixX3d(x) - Eigen::MatrixX3d(p.b)).norm(), 1e-12 * p.b.norm());
 }
 
-// Single precision alone is a few digits short; one correction with a double-precision residual
-// (how projective dynamics uses it) gains them back.
+// Single precision alone is a few digits short; corrections with a double-precision residual (how
+// projective dynamics uses it) gain them back.
 TEST(InterleavedCholesky, SinglePrecisionCorrectionsRecoverDoubleAccuracy) {
-  const Eigen::SparseMatrix<double> A = cloth_matrix(15, 1.0 / 60);
+  const SolveProblem p = solve_problem(5);
   detail::InterleavedCholesky<float> single;
-  ASSERT_TRUE(single.compute(A));
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(A);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  RowX3 b(A.rows(), 3);
-  for (int r = 0; r < b.rows(); ++r)
-    for (int c = 0; c < 3; ++c) b(r, c) = u(rng);
-  const Eigen::MatrixX3d expected = ldlt.solve(Eigen::MatrixX3d(b));
-  RowX3 x = b;
+  ASSERT_TRUE(single.compute(p.A));
+  RowX3 x = p.b;
   single.solve_in_place(x.data());
-  const double first = (Eigen::MatrixX3d(x) - expected).norm() / expected.norm();
+  const double first = (Eigen::MatrixX3d(x) - p.expected).norm() / p.expected.norm();
   EXPECT_LT(first, 1e-4);
   EXPECT_GT(first, 1e-12);  // it is single precision
   for (int refine = 0; refine < 3; ++refine) {
-    RowX3 r = b - RowX3(A * Eigen::MatrixX3d(x));
+    RowX3 r = p.b - RowX3(p.A * Eigen::MatrixX3d(x));
     single.solve_in_place(r.data());
     x += r;
   }
-  EXPECT_LT((Eigen::MatrixX3d(x) - expected).norm(), 1e-12 * expected.norm());
+  EXPECT_LT((Eigen::MatrixX3d(x) - p.expected).norm(), 1e-12 * p.expected.norm());
 }
 
 // A converged projective step minimises backward Euler's incremental potential, as Newton's method
