@@ -1,13 +1,19 @@
 // Error against run time (issue 3): the 81×81 hanging cloth (6,561 vertices, 1 m, gray-interlock,
-// pinned at its two top corners) simulated for 1 s by each integrator over a range of time steps and
-// solver tolerances (projective dynamics: iterations per step). Error = RMS distance of the vertices from a reference run (implicit Euler at
-// 1/4800 s, CG tolerance 1e-10) at t = 1 s, over the cloth's size (1 m). Cost = wall time per 1/60 s
-// of simulated time, one core. Writes CSV.
-// Usage: bench_cloth_error [out.csv=out/bench/error_vs_time.csv] [--quick] [--only INTEGRATOR]
+// pinned at its two top corners) simulated for 1 s by each integrator over a range of time steps
+// and solver tolerances (projective dynamics: iterations per step). Error = RMS distance of the
+// vertices from a reference run (implicit Euler at 1/4800 s, CG tolerance 1e-10) at t = 1 s, over
+// the cloth's size (1 m). Cost = wall time per 1/60 s of simulated time, one core (wall, and the
+// process's CPU time, which a loaded machine inflates less). Writes CSV. Projective dynamics runs
+// with backward Euler and with BDF2 (CSV integrator "projective-bdf2"), and with its
+// double-precision solve for comparison ("projective-double"). Usage: bench_cloth_error
+// [out.csv=out/bench/error_vs_time.csv] [--quick] [--only INTEGRATOR]
+//        [--reference FILE]  (reads the reference positions from FILE, or computes and writes them
+//        there)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -20,6 +26,8 @@ namespace {
 struct Run {
   Eigen::MatrixX3d x;
   double wall = 0.0;
+  double cpu =
+      0.0;  ///< process CPU time [s]: what one core spent, whatever else ran on the machine
   bool ok = true;
   std::string failure;
 };
@@ -29,6 +37,7 @@ Run simulate(const ClothModel& model, const std::vector<int>& pins, SimulationOp
   sim.set_pinned(pins);
   const int steps = static_cast<int>(std::lround(1.0 / o.dt));
   Run run;
+  const std::clock_t c0 = std::clock();
   const auto t0 = std::chrono::steady_clock::now();
   for (int s = 0; s < steps; ++s) {
     const StepResult r = sim.step();
@@ -39,6 +48,7 @@ Run simulate(const ClothModel& model, const std::vector<int>& pins, SimulationOp
     }
   }
   run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  run.cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   run.x = sim.positions();
   return run;
 }
@@ -48,10 +58,16 @@ int main(int argc, char** argv) {
   std::string csv_path = "out/bench/error_vs_time.csv";
   bool quick = false;
   std::string only;  // --only NAME: just that integrator's runs (and the reference)
+  std::string reference_path;
   for (int a = 1; a < argc; ++a) {
-    if (std::strcmp(argv[a], "--quick") == 0) quick = true;
-    else if (std::strcmp(argv[a], "--only") == 0 && a + 1 < argc) only = argv[++a];
-    else csv_path = argv[a];
+    if (std::strcmp(argv[a], "--quick") == 0)
+      quick = true;
+    else if (std::strcmp(argv[a], "--only") == 0 && a + 1 < argc)
+      only = argv[++a];
+    else if (std::strcmp(argv[a], "--reference") == 0 && a + 1 < argc)
+      reference_path = argv[++a];
+    else
+      csv_path = argv[a];
   }
   const int n = 81;
   const TriangleMesh grid = make_grid({1.0, 1.0}, {n, n}, {0, 0, 0}, {0, 0, 1});
@@ -63,22 +79,48 @@ int main(int argc, char** argv) {
   SimulationOptions ref = base;
   ref.dt = quick ? 1.0 / 1200 : 1.0 / 4800;
   ref.cg_tolerance = 1e-10;
-  const Run reference = simulate(model, pins, ref);
-  std::printf("reference: implicit dt 1/%ld, %.1f s wall%s\n", std::lround(1 / ref.dt), reference.wall,
-              reference.ok ? "" : (" FAILED: " + reference.failure).c_str());
+  Run reference;
+  std::ifstream cached(reference_path, std::ios::binary);
+  if (!reference_path.empty() && cached) {
+    reference.x.resize(n * n, 3);
+    cached.read(reinterpret_cast<char*>(reference.x.data()),
+                static_cast<std::streamsize>(sizeof(double) * 3 * n * n));
+    if (!cached) {
+      std::fprintf(stderr, "%s: not a reference of this cloth\n", reference_path.c_str());
+      return 2;
+    }
+    std::printf("reference: read from %s\n", reference_path.c_str());
+  } else {
+    reference = simulate(model, pins, ref);
+    std::printf("reference: implicit dt 1/%ld, %.1f s wall%s\n", std::lround(1 / ref.dt),
+                reference.wall, reference.ok ? "" : (" FAILED: " + reference.failure).c_str());
+    if (!reference_path.empty()) {
+      std::ofstream out(reference_path, std::ios::binary);
+      out.write(reinterpret_cast<const char*>(reference.x.data()),
+                static_cast<std::streamsize>(sizeof(double) * 3 * n * n));
+    }
+  }
 
   std::filesystem::create_directories(std::filesystem::path(csv_path).parent_path());
   std::ofstream csv(csv_path);
-  csv << "integrator,label,dt,cg_tolerance,wall_seconds,ms_per_frame,relative_error,stable\n";
+  csv << "integrator,label,dt,cg_tolerance,wall_seconds,ms_per_frame,cpu_ms_per_frame,relative_"
+         "error,stable\n";
   auto record = [&](const SimulationOptions& o, const std::string& label) {
-    if (!only.empty() && to_string(o.integrator) != only) return;
+    std::string name = to_string(o.integrator);
+    if (o.integrator == Integrator::projective && o.time_scheme == TimeScheme::bdf2)
+      name += "-bdf2";
+    if (o.integrator == Integrator::projective && !o.projective_single_precision) name += "-double";
+    if (!only.empty() && name.rfind(only, 0) != 0) return;
     const Run r = simulate(model, pins, o);
-    const double error = r.ok ? std::sqrt((r.x - reference.x).rowwise().squaredNorm().mean()) / 1.0 : NAN;
-    const double ms_per_frame = r.wall / 60.0 * 1e3;
-    csv << to_string(o.integrator) << "," << label << "," << o.dt << "," << o.cg_tolerance << "," << r.wall << ","
-        << ms_per_frame << "," << error << "," << r.ok << "\n";
-    std::printf("%-10s %-22s %8.2f ms/frame  error %.2e %s\n", to_string(o.integrator).c_str(), label.c_str(),
-                ms_per_frame, error, r.ok ? "" : ("unstable: " + r.failure).c_str());
+    const double error =
+        r.ok ? std::sqrt((r.x - reference.x).rowwise().squaredNorm().mean()) / 1.0 : NAN;
+    const double ms_per_frame = r.wall / 60.0 * 1e3, cpu_ms_per_frame = r.cpu / 60.0 * 1e3;
+    csv << name << "," << label << "," << o.dt << "," << o.cg_tolerance << "," << r.wall << ","
+        << ms_per_frame << "," << cpu_ms_per_frame << "," << error << "," << r.ok << "\n";
+    csv.flush();
+    std::printf("%-17s %-22s %8.2f ms/frame (CPU %8.2f)  error %.2e %s\n", name.c_str(),
+                label.c_str(), ms_per_frame, cpu_ms_per_frame, error,
+                r.ok ? "" : ("unstable: " + r.failure).c_str());
     std::fflush(stdout);
   };
   for (int inv : {4800, 2400, 1200, 600}) {
@@ -110,16 +152,24 @@ int main(int argc, char** argv) {
     std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, o.cg_tolerance);
     record(o, label);
   }
-  for (int inv : {60, 120, 240, 480}) {
-    for (int iterations : {5, 10, 20, 40}) {
-      SimulationOptions o = base;
-      o.integrator = Integrator::projective;
-      o.dt = 1.0 / inv;
-      o.projective_iterations = iterations;
-      o.newton_tolerance = 1e-7;
-      char label[64];
-      std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
-      record(o, label);
+  for (TimeScheme scheme : {TimeScheme::backward_euler, TimeScheme::bdf2}) {
+    for (int inv : {30, 60, 120, 240, 480}) {
+      for (int iterations : {3, 5, 10, 20, 40}) {
+        SimulationOptions o = base;
+        o.integrator = Integrator::projective;
+        o.time_scheme = scheme;
+        o.dt = 1.0 / inv;
+        o.projective_iterations = iterations;
+        o.newton_tolerance = 1e-7;
+        char label[64];
+        std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
+        record(o, label);
+        if (scheme == TimeScheme::backward_euler &&
+            inv == 60) {  // the double-precision solve, for comparison
+          o.projective_single_precision = false;
+          record(o, label);
+        }
+      }
     }
   }
   std::printf("wrote %s\n", csv_path.c_str());

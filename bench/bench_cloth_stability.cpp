@@ -1,13 +1,14 @@
-// Stability envelope (issue 3): for each integrator, spring stiffness k (normalised by particle mass,
-// 1e1 … 1e8 N/m per kg) × time step (1/1000 … 1/24 s): a 10×10 cloth of unit-mass particles pinned at
-// two corners, without gravity, released from a random perturbation of 10 % of the spacing, runs for
-// 1 s undamped. Unstable = a step fails (NaN, strain over 100 %, solver failure) or the total energy
-// grows beyond 10× its initial value (the exact solution keeps it constant). Writes CSV to the given path and prints
-// the largest stable step per stiffness.
-// Usage: bench_cloth_stability [out.csv=out/bench/stability_envelope.csv]
+// Stability envelope (issue 3): for each integrator, spring stiffness k (normalised by particle
+// mass, 1e1 … 1e8 N/m per kg) × time step (1/1000 … 1/24 s): a 10×10 cloth of unit-mass particles
+// pinned at two corners, without gravity, released from a random perturbation of 10 % of the
+// spacing, runs for 1 s undamped (projective dynamics with backward Euler and with BDF2,
+// "projective-bdf2"). Unstable = a step fails (NaN, strain over 100 %, solver failure) or the total
+// energy grows beyond 10× its initial value (the exact solution keeps it constant). Writes CSV to
+// the given path and prints the largest stable step per stiffness. Usage: bench_cloth_stability
+// [out.csv=out/bench/stability_envelope.csv]
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -26,9 +27,19 @@ int main(int argc, char** argv) {
   ClothModel base = build_cloth(grid, fabric_by_name("gray-interlock"));
   base.mass.setOnes();  // unit masses: k is then k / m
   const double dts[] = {1.0 / 1000, 1.0 / 500, 1.0 / 240, 1.0 / 120, 1.0 / 60, 1.0 / 24};
-  for (Integrator integrator : {Integrator::symplectic_euler, Integrator::implicit_euler, Integrator::newton,
-                                Integrator::projective}) {
-    std::printf("%s: largest stable step per stiffness\n", to_string(integrator).c_str());
+  struct Variant {
+    Integrator integrator;
+    TimeScheme scheme;
+  };
+  for (const Variant variant : {Variant{Integrator::symplectic_euler, TimeScheme::backward_euler},
+                                Variant{Integrator::implicit_euler, TimeScheme::backward_euler},
+                                Variant{Integrator::newton, TimeScheme::backward_euler},
+                                Variant{Integrator::projective, TimeScheme::backward_euler},
+                                Variant{Integrator::projective, TimeScheme::bdf2}}) {
+    const Integrator integrator = variant.integrator;
+    const std::string name =
+        to_string(integrator) + (variant.scheme == TimeScheme::bdf2 ? "-bdf2" : "");
+    std::printf("%s: largest stable step per stiffness\n", name.c_str());
     for (int e = 1; e <= 8; ++e) {
       const double k = std::pow(10.0, e);
       ClothModel model = base;
@@ -40,6 +51,7 @@ int main(int argc, char** argv) {
       for (double dt : dts) {
         SimulationOptions o;
         o.integrator = integrator;
+        o.time_scheme = variant.scheme;
         o.dt = dt;
         o.cg_max_iterations = 2000;
         o.gravity.setZero();
@@ -71,10 +83,13 @@ int main(int argc, char** argv) {
           }
         }
         for (char& c : reason) c = c == ',' ? ';' : c;
-        csv << to_string(integrator) << "," << k << "," << dt << "," << stable << "," << reason << "," << done << "\n";
+        csv << name << "," << k << "," << dt << "," << stable << "," << reason << "," << done
+            << "\n";
         if (stable) largest = std::max(largest, dt);
       }
-      std::printf("  k/m = 1e%d: %s\n", e, largest > 0 ? ("dt <= 1/" + std::to_string(std::lround(1 / largest))).c_str() : "no step stable");
+      std::printf("  k/m = 1e%d: %s\n", e,
+                  largest > 0 ? ("dt <= 1/" + std::to_string(std::lround(1 / largest))).c_str()
+                              : "no step stable");
     }
   }
   std::printf("wrote %s\n", csv_path.c_str());

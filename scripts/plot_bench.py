@@ -33,7 +33,7 @@ def stability(rows, out):
         ax.set_xlabel("time step [s]")
         ax.set_ylabel("stiffness / particle mass [N/m/kg]")
         titles = {"implicit": "implicit Euler", "newton": "Newton (backward Euler)", "symplectic": "symplectic Euler",
-                  "projective": "projective dynamics"}
+                  "projective": "projective dynamics", "projective-bdf2": "projective dynamics, BDF2"}
         ax.set_title("%s: green = stable" % titles.get(name, name))
     fig.tight_layout()
     fig.savefig(out, dpi=90)
@@ -47,22 +47,23 @@ def error(rows, out):
         if r["stable"] != "1":
             unstable.add(r["integrator"])
             continue
-        if r["integrator"] == "projective":  # one line per iteration count, over the time steps
-            key = "projective, %s iterations" % r["label"].split(" it ")[1]
+        if r["integrator"].startswith("projective"):  # one line per variant and iteration count
+            key = "%s, %s iterations" % (r["integrator"], r["label"].split(" it ")[1])
         else:
             key = r["integrator"] + ("" if r["integrator"] == "symplectic" else ", CG tol %s" % r["cg_tolerance"])
         label = r["label"].split(" tol")[0].split(" it ")[0]
-        series.setdefault(key, []).append((float(r["ms_per_frame"]), float(r["relative_error"]), label))
+        cost = float(r.get("cpu_ms_per_frame") or r["ms_per_frame"])  # CPU time when the CSV has it
+        series.setdefault(key, []).append((cost, float(r["relative_error"]), label))
     for key, pts in sorted(series.items()):
         pts.sort()
-        style = "s--" if key.startswith("projective") else "o-"
+        style = "s--" if key.startswith("projective,") else ("^:" if key.startswith("projective-") else "o-")
         ax.loglog([p[0] for p in pts], [p[1] for p in pts], style, label=key, ms=4)
         if key.endswith("0.001") or key == "projective, 5 iterations":
             for p in pts:
                 ax.annotate(p[2], (p[0], p[1]), fontsize=7, xytext=(-40, -3), textcoords="offset points")
     ax.axhline(0.01, color="grey", ls="--", lw=0.8)
     ax.axvline(5.0, color="grey", ls="--", lw=0.8)
-    ax.set_xlabel("wall time per 1/60 s frame [ms], one core")
+    ax.set_xlabel("time per 1/60 s frame [ms], one core (CPU time when measured)")
     ax.set_ylabel("RMS position error / cloth size at t = 1 s")
     title = "81x81 hanging cloth: error against run time"
     if unstable:

@@ -5,47 +5,118 @@
 // columns. Local step: d along the spring with the length ℓ = L − t(L)/w, so that the quadratic's
 // force w (L − ℓ) equals the spring law's tension t(L) at the current length (the nonlinear law,
 // with dynamic stiffness, enters through the targets while the matrix stays constant). A converged
-// step is therefore backward Euler with the full law. w is the law's tangent stiffness just below the
-// knee: the fixed-point iteration contracts while the local stiffness stays within about twice w
-// (with w = k_knee the error bench's error grew with the iteration count). Spring damping is not
+// step is therefore backward Euler with the full law. w is the law's tangent stiffness just below
+// the knee: the fixed-point iteration contracts while the local stiffness stays within about twice
+// w (with w = k_knee the error bench's error grew with the iteration count). Spring damping is not
 // modelled (as in the Newton integrator).
-#include <Eigen/SparseCholesky>
+//
+// BDF2 (options.time_scheme): x_{n+1} = x̂ + h' v_{n+1} and v_{n+1} = v̂ + h' M⁻¹ f(x_{n+1}) with
+// h' = 2h/3, x̂ = (4 x_n − x_{n−1})/3, v̂ = (4 v_n − v_{n−1})/3 — the same minimisation as backward
+// Euler with the inertia target x̂ + h' v̂ and the step h' (air damping acts on (x − x̂)/h'). The
+// first step (and the first after a change of step size or set_state) is backward Euler. Tried:
+// starting BDF2 from x_{n−1} = x_n − h v_n, v_{n−1} = v_n kept the whole run first order (the
+// start's O(h) velocity error; order 1.2–1.3 on the oscillator test), and a Taylor start with the
+// current acceleration was second order but blew up on very stiff springs (an explicit step in
+// disguise).
+//
+// Speed (docs/results.md, bench_cloth_error): the global step's three triangular solves dominate;
+// they run on an interleaved copy of the factor (interleaved_cholesky.h), by default in single
+// precision for the change of the iterate against a double-precision residual. The local step reads
+// flat arrays. Collisions (options.projective_collisions): after every global step particles inside
+// a collider's margin are pushed out to it along the normal, so the springs settle around the
+// contacts within the step; the contacts of the last pass then lose their inward speed and get
+// friction (as collide()).
 #include <cmath>
 
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/cloth/stiffness_law.h"
+#include "interleaved_cholesky.h"
 #include "simulator_internal.h"
 
 namespace dresskit {
 
 namespace {
-/// The spring's weight: the law's tangent stiffness just below the knee, k_knee + (5/3)(k_knee − k0)
-/// (the last ramp segment's slope × knee strain, plus k_knee).
+/// The spring's weight: the law's tangent stiffness just below the knee, k_knee + (5/3)(k_knee −
+/// k0) (the last ramp segment's slope × knee strain, plus k_knee).
 double projective_weight(double k_rest, double k_knee) {
   const double knee = std::max(k_rest, k_knee);
   return knee + 5.0 / 3.0 * (knee - k_rest);
 }
+
+using RowX3 = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
+
+/// A spring's constants for the local step, packed (one read per spring): the ends, rest length and
+/// its inverse, the law (fitted_k: k0, the rise to the knee, the slope beyond it) and the weight.
+struct LocalSpring {
+  int i, j;
+  double L0, inv_L0, k0, rise, slope, w;
+  /// w for bending springs, else 0. Only their diagonal terms are in the matrix: their couplings
+  /// are moved to the right-hand side at the current iterate (a splitting; the fixed point is the
+  /// same). They join vertices two apart, so in the matrix they more than double the factor (81×81
+  /// cloth: 465 k entries with them, 195 k without) and the solve's time with it; their weights are
+  /// a small fraction of the stretch springs', so the lag costs no iterations (docs/results.md).
+  double lagged_w;
+};
 }  // namespace
 
 struct ClothSimulator::Projective {
-  double h = 0.0;
+  double h = 0.0;  ///< the step in the matrix: dt, or 2 dt / 3 for BDF2
+  bool single_precision = true;
   std::vector<bool> pinned;
-  Eigen::VectorXd inertia;                 ///< m/h² + c m/h per particle
-  Eigen::SparseMatrix<double> to_pinned;   ///< free-row × pinned-column couplings, moved to the rhs
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver;
+  Eigen::VectorXd inertia;                         ///< m/h² + c m/h per particle
+  Eigen::SparseMatrix<double, Eigen::RowMajor> A;  ///< the global matrix (pinned rows: identity)
+  Eigen::SparseMatrix<double> to_pinned;  ///< free-row × pinned-column couplings, moved to the rhs
+  std::vector<LocalSpring> springs;
+  std::vector<int> pinned_list;
+  detail::InterleavedCholesky<float> single;
+  detail::InterleavedCholesky<double> full;
   bool ok = false;
+  std::shared_ptr<Projective>
+      spare;  ///< the factorisation of the other step size (BDF2's start-up)
 };
 
 void ClothSimulator::step_projective(StepResult& r) {
-  const double h = dt_;
+  const double dt = dt_;
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
   const double c = options_.air_damping;
-  if (!projective_ || projective_->h != h || projective_->pinned != pinned_) {
+  // BDF2's history: a completed step since the last try makes its start the previous state.
+  if (history_.t_start != time_) {
+    if (history_.t_start >= 0.0) {
+      history_.x_prev = history_.x_start;
+      history_.v_prev = history_.v_start;
+      history_.t_prev = history_.t_start;
+    }
+    history_.x_start = x_;
+    history_.v_start = v_;
+    history_.t_start = time_;
+  }
+  // Without a previous state a step apart (the first step, after a change of step or set_state) the
+  // step is backward Euler: its O(h²) error enters once, so the run stays second order.
+  const bool bdf2 = options_.time_scheme == TimeScheme::bdf2 && history_.t_prev >= 0.0 &&
+                    std::abs(time_ - history_.t_prev - dt) <= 1e-9 * dt;
+  const double h = bdf2 ? 2.0 * dt / 3.0 : dt;
+  Eigen::MatrixX3d base = x_, vbase = v_;  // x̂ and v̂ (backward Euler: x_n and v_n)
+  if (bdf2) {
+    base = (4.0 * x_ - history_.x_prev) / 3.0;
+    vbase = (4.0 * v_ - history_.v_prev) / 3.0;
+  }
+
+  // The factorisation for this h: the current one, the spare (BDF2 keeps backward Euler's start-up
+  // matrix there), or a new one.
+  if (projective_ && projective_->h != h && projective_->spare && projective_->spare->h == h) {
+    std::shared_ptr<Projective> current = projective_->spare;
+    projective_->spare.reset();
+    current->spare = projective_;
+    projective_ = current;
+  }
+  if (!projective_ || projective_->h != h || projective_->pinned != pinned_ ||
+      projective_->single_precision != options_.projective_single_precision) {
     auto p = std::make_shared<Projective>();
     p->h = h;
     p->pinned = pinned_;
+    p->single_precision = options_.projective_single_precision;
     p->inertia = model_.mass * (1.0 / (h * h) + c / h);
     std::vector<Eigen::Triplet<double>> a, b;
     a.reserve(static_cast<std::size_t>(4 * s.size() + n));
@@ -54,11 +125,25 @@ void ClothSimulator::step_projective(StepResult& r) {
       if (pinned_[row]) return;
       (pinned_[col] ? b : a).emplace_back(row, col, value);
     };
+    p->springs.resize(static_cast<std::size_t>(s.size()));
     for (int k = 0; k < s.size(); ++k) {
       const int i = s.i[k], j = s.j[k];
       const double w = projective_weight(s.k_rest[k], s.k_knee[k]);
+      const double rise = std::max(s.k_knee[k] - s.k_rest[k], 0.0);
+      const bool lagged =
+          s.type[k] == SpringType::bending;  // off the matrix: see LocalSpring::lagged_w
+      p->springs[k] = {i,
+                       j,
+                       s.rest_length[k],
+                       1.0 / s.rest_length[k],
+                       s.k_rest[k],
+                       rise,
+                       std::max(2.0 * rise, s.k_rest[k] + rise) / kKneeStrain,
+                       w,
+                       lagged ? w : 0.0};
       couple(i, i, w);
       couple(j, j, w);
+      if (lagged) continue;
       couple(i, j, -w);
       couple(j, i, -w);
     }
@@ -70,73 +155,161 @@ void ClothSimulator::step_projective(StepResult& r) {
       for (int p = 0; p < 3; ++p)
         for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], model_.seams.stiffness[k] * sw[p] * sw[q]);
     }
+    for (int v = 0; v < n; ++v)
+      if (pinned_[v]) p->pinned_list.push_back(v);
     Eigen::SparseMatrix<double> A(n, n);
     A.setFromTriplets(a.begin(), a.end());
+    p->A = A;
     p->to_pinned.resize(n, n);
     p->to_pinned.setFromTriplets(b.begin(), b.end());
-    p->solver.compute(A);
-    p->ok = p->solver.info() == Eigen::Success;
+    p->ok = p->single_precision ? p->single.compute(A) : p->full.compute(A);
+    if (projective_ && projective_->h != h) {
+      p->spare = projective_;
+      p->spare->spare.reset();
+    }
     projective_ = p;
   }
-  if (!projective_->ok) {
+  const Projective& P = *projective_;
+  if (!P.ok) {
     r.ok = false;
     r.failure = "projective dynamics: the global matrix could not be factorised";
     return;
   }
 
-  // Constant part of the right-hand side: inertia, air (with wind) and gravity.
+  // Constant part of the right-hand side: inertia, air (with wind) and gravity; pinned rows hold
+  // x0.
   const Eigen::MatrixX3d x0 = x_;
-  const Eigen::Vector3d wind = wind_at(time_ + h);
-  Eigen::MatrixX3d fixed(n, 3);
+  const Eigen::Vector3d wind = wind_at(time_ + dt);
+  const Eigen::MatrixX3d target = base + h * vbase;  // the inertia target
+  RowX3 fixed(n, 3), X(n, 3);
   for (int v = 0; v < n; ++v) {
     const double m = model_.mass(v);
-    fixed.row(v) = (m / (h * h)) * (x0.row(v) + h * v_.row(v)) + (c * m / h) * (x0.row(v) + h * wind.transpose()) +
+    fixed.row(v) = (m / (h * h)) * target.row(v) +
+                   (c * m / h) * (base.row(v) + h * wind.transpose()) +
                    m * options_.gravity.transpose();
   }
-  fixed -= projective_->to_pinned * x0;  // pinned particles stay where they are
-  for (int v = 0; v < n; ++v)
+  fixed -= P.to_pinned * x0;  // pinned particles stay where they are
+  for (int v = 0; v < n; ++v) {
     if (pinned_[v]) fixed.row(v) = x0.row(v);
+    X.row(v) = pinned_[v] ? x0.row(v) : target.row(v);  // start from the inertia target
+  }
 
-  // Start from the inertial prediction.
-  for (int v = 0; v < n; ++v)
-    if (!pinned_[v]) x_.row(v) = x0.row(v) + h * v_.row(v);
-  Eigen::MatrixX3d rhs(n, 3);
-  const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : 0.0;
+  RowX3 rhs(n, 3), previous(n, 3);
+  const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
+  const double* rest = model_.rest_positions.data();
+  // Contacts of the last collision pass: particle, collider and outward normal.
+  std::vector<int> contact_particle, contact_collider;
+  std::vector<Eigen::Vector3d> contact_normal;
+  std::vector<double> contact_push;
   for (int it = 0; it < options_.projective_iterations; ++it) {
     rhs = fixed;
-    for (int k = 0; k < s.size(); ++k) {  // local step: each spring's target
-      const int i = s.i[k], j = s.j[k];
-      Eigen::Vector3d e = detail::row(x_, j) - detail::row(x_, i);
-      double L = e.norm();
+    double* R = rhs.data();
+    const double* x = X.data();
+    for (const LocalSpring& q : P.springs) {  // local step: each spring's target
+      const int i = q.i, j = q.j;
+      double e[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
+      double L = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
       if (L < 1e-12) {  // no direction: take the rest direction
-        e = detail::row(model_.rest_positions, j) - detail::row(model_.rest_positions, i);
+        for (int a = 0; a < 3; ++a) e[a] = rest[j + a * n] - rest[i + a * n];
         L = 0.0;
       }
-      const double L0 = s.rest_length[k], w = projective_weight(s.k_rest[k], s.k_knee[k]);
-      const double strain = L / L0 - 1.0;
-      double t = fitted_k(s.k_rest[k], s.k_knee[k], kKneeStrain, strain) * strain * L0;
-      if (beyond > 0.0 && L > beyond * L0) t *= L / L0;
-      const double target = std::max(L - t / w, 0.0);
-      const Eigen::Vector3d d = (w * target / e.norm()) * e;
-      if (!pinned_[j]) rhs.row(j) += d.transpose();
-      if (!pinned_[i]) rhs.row(i) -= d.transpose();
+      // 1 / |e| first: the division then runs alongside the law below instead of after it.
+      const double inv_norm =
+          1.0 / (L > 0.0 ? L : std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
+      // The law's secant stiffness without branches (fitted_k): ramp knots at thirds of the knee
+      // strain, then the straight continuation beyond it.
+      const double strain = L * q.inv_L0 - 1.0;
+      const double u = std::min(std::max(strain * (3.0 / kKneeStrain), 0.0), 3.0);
+      const double seg = static_cast<int>(u);
+      const double k = q.k0 + q.rise * (1.0 / 9.0) * (seg * seg + (u - seg) * (2.0 * seg + 1.0)) +
+                       q.slope * std::max(strain - kKneeStrain, 0.0);
+      const double stretch = L > beyond * q.L0 ? L * q.inv_L0 : 1.0;  // dynamic stiffness
+      const double t = k * strain * q.L0 * stretch;
+      // w d: the quadratic's pull w (L − ℓ) along e with ℓ = max(L − t/w, 0).
+      const double scale = std::max(q.w * L - t, 0.0) * inv_norm;
+      for (int a = 0; a < 3; ++a) {
+        R[3 * j + a] += scale * e[a] + q.lagged_w * x[3 * i + a];
+        R[3 * i + a] += q.lagged_w * x[3 * j + a] - scale * e[a];
+      }
     }
+    // Stitches: k d spread by their weights (d: the soft-threshold target of the current gap).
     int idx[3];
     double sw[3];
     for (int k = 0; k < model_.seams.size(); ++k) {
       seam_weights(model_.seams, k, idx, sw);
-      const Eigen::RowVector3d d =
-          model_.seams.stiffness[k] * stitch_target(model_.seams, k, seam_gap(model_.seams, k, x_)).transpose();
-      for (int p = 0; p < 3; ++p)
-        if (!pinned_[idx[p]]) rhs.row(idx[p]) += sw[p] * d;
+      const Eigen::Vector3d gap = (sw[0] * X.row(idx[0]) + sw[1] * X.row(idx[1]) + sw[2] * X.row(idx[2])).transpose();
+      const Eigen::RowVector3d d = model_.seams.stiffness[k] * stitch_target(model_.seams, k, gap).transpose();
+      for (int p = 0; p < 3; ++p) rhs.row(idx[p]) += sw[p] * d;
     }
-    const Eigen::MatrixX3d next = projective_->solver.solve(rhs);  // global step
-    const double moved = (next - x_).rowwise().norm().maxCoeff();
-    x_ = next;
+    for (int v : P.pinned_list)
+      R[3 * v] = x[3 * v], R[3 * v + 1] = x[3 * v + 1], R[3 * v + 2] = x[3 * v + 2];
+    previous = X;
+    if (P.single_precision) {  // global step as a correction: A δ = rhs − A X
+      const int* outer = P.A.outerIndexPtr();
+      const int* inner = P.A.innerIndexPtr();
+      const double* value = P.A.valuePtr();
+      for (int row = 0; row < n; ++row) {
+        double r0 = R[3 * row], r1 = R[3 * row + 1], r2 = R[3 * row + 2];
+        for (int q = outer[row]; q < outer[row + 1]; ++q) {
+          const double* xc = x + 3 * inner[q];
+          r0 -= value[q] * xc[0];
+          r1 -= value[q] * xc[1];
+          r2 -= value[q] * xc[2];
+        }
+        R[3 * row] = r0, R[3 * row + 1] = r1, R[3 * row + 2] = r2;
+      }
+      P.single.solve_in_place(R);
+      X += rhs;
+    } else {
+      P.full.solve_in_place(R);
+      X = rhs;
+    }
+    if (options_.projective_collisions && !options_.colliders.empty()) {
+      contact_particle.clear(), contact_collider.clear(), contact_normal.clear(),
+          contact_push.clear();
+      for (int v = 0; v < n; ++v) {
+        if (pinned_[v]) continue;
+        const double margin = options_.collision_margin + model_.layer_offset[model_.layer[v]];
+        for (int ci = 0; ci < static_cast<int>(options_.colliders.size()); ++ci) {
+          Eigen::Vector3d normal;
+          const Eigen::Vector3d p = X.row(v).transpose();
+          const double d = options_.colliders[ci].distance(p, &normal);
+          if (d >= margin) continue;
+          X.row(v) += (margin - d) * normal.transpose();
+          contact_particle.push_back(v), contact_collider.push_back(ci),
+              contact_normal.push_back(normal);
+          contact_push.push_back(margin - d);
+        }
+      }
+    }
+    const double moved = (X - previous).rowwise().norm().maxCoeff();
     r.newton_iterations = it + 1;
     if (moved < options_.newton_tolerance) break;
   }
-  v_ = (x_ - x0) / h;
+  for (int v = 0; v < n; ++v)
+    if (pinned_[v]) X.row(v) = x0.row(v);
+  x_ = X;
+  v_ = (x_ - base) / h;
+  for (int v = 0; v < n; ++v)
+    if (pinned_[v]) v_.row(v).setZero();
+  // Contacts: no inward speed; static or kinetic friction on the sliding part (as collide()). The
+  // normal speed the contact removed is the last pass's push over h (at convergence the push the
+  // contact force gives: h g_n for a particle resting under gravity) plus any inward speed left.
+  for (std::size_t k = 0; k < contact_particle.size(); ++k) {
+    const Collider& col = options_.colliders[contact_collider[k]];
+    const Eigen::Vector3d& nk = contact_normal[k];
+    Eigen::Vector3d vel = v_.row(contact_particle[k]).transpose();
+    const double vn = vel.dot(nk), removed = std::max(-vn, 0.0) + contact_push[k] / h;
+    if (vn < 0.0) vel -= vn * nk;
+    const Eigen::Vector3d vt = vel - vel.dot(nk) * nk;
+    const double speed = vt.norm(),
+                 mu_static = col.static_friction < 0.0 ? col.friction : col.static_friction;
+    if (speed <= mu_static * removed)
+      vel -= vt;
+    else
+      vel -= (col.friction * removed / speed) * vt;
+    v_.row(contact_particle[k]) = vel.transpose();
+  }
 }
 
 }  // namespace dresskit

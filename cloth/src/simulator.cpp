@@ -152,6 +152,7 @@ void ClothSimulator::set_state(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d
   assert(x.rows() == x_.rows() && v.rows() == v_.rows());
   x_ = x;
   v_ = v;
+  history_ = History{};  // BDF2 must not reach back past a state set from outside
   find_contacts();
 }
 

@@ -61,11 +61,14 @@ TEST(ClothScene, BadScenesNameTheKey) {
       {R"({"cloth": {)" + grid + R"(, "pins": [[4, 0]]}})", "cloth.pins"},
       {R"({"cloth": {)" + grid + R"(, "total_mass": -2}})", "cloth.total_mass"},
       {R"({"cloth": {)" + grid + R"(}, "colliders": [{"type": "cone"}]})", "colliders[0].type"},
-      {R"({"cloth": {)" + grid + R"(}, "colliders": [{"type": "sphere", "radius": 1, "size": 2}]})", "colliders[0].size"},
+      {R"({"cloth": {)" + grid + R"(}, "colliders": [{"type": "sphere", "radius": 1, "size": 2}]})",
+       "colliders[0].size"},
       {R"({"cloth": {"grid": {"size": [1, 1], "resolution": [1, 4]}}})", "cloth.grid.resolution"},
       {R"({"cloth": {)" + grid + R"(, "mesh": "x.obj"}})", "exactly one of"},
       {R"({"cloth": {"chain": {"particles": 3}}})", "total_mass"},
       {R"({"cloth": {)" + grid + R"(}, "simulation": {"integrator": "rk4"}})", "rk4"},
+      {R"({"cloth": {)" + grid + R"(}, "simulation": {"time_scheme": "bdf3"}})",
+       "simulation.time_scheme"},
   };
   for (const auto& [text, fragment] : cases) {
     const std::string path = write(dir, text);
@@ -78,4 +81,18 @@ TEST(ClothScene, BadScenesNameTheKey) {
       EXPECT_EQ(m.find('\n'), std::string::npos) << m;
     }
   }
+}
+
+TEST(ClothScene, ProjectiveDynamicsKeys) {
+  test::TempDir dir;
+  const std::string grid = R"("grid": {"size": [1, 1], "resolution": [4, 4]})";
+  const ClothScene defaults = load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}})"));
+  EXPECT_EQ(defaults.simulation.time_scheme, TimeScheme::backward_euler);
+  EXPECT_FALSE(defaults.simulation.projective_collisions);
+  const ClothScene s =
+      load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation": {"integrator":
+      "projective", "time_scheme": "bdf2", "projective_collisions": true}})"));
+  EXPECT_EQ(s.simulation.integrator, Integrator::projective);
+  EXPECT_EQ(s.simulation.time_scheme, TimeScheme::bdf2);
+  EXPECT_TRUE(s.simulation.projective_collisions);
 }
