@@ -163,17 +163,20 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   // Contact distance of the path test; corrections leave pairs at least twice this apart, so that
   // a corrected pair is not found again at the end of its path.
   const double eta = 0.05 * h;
-  std::vector<Pair> pairs;
+  std::vector<Pair>& pairs = pairs_;
   int idx[4];
   double alpha[4];
-  // One candidate list serves all passes while no particle has moved more than h/2 (per coordinate)
-  // from where it was when the list was made: it is made with pad 2h, and every pair that a pass
-  // needs (within h, or eta on the paths) was then within h + 2 · h/2. Most steps make one list.
-  Eigen::MatrixX3d listed;
+  // One candidate list serves all passes — and a second call for the same step (same x0) — while no
+  // particle has moved more than h/2 (per coordinate) from where it was when the list was made: it is
+  // made with pad 2h, and every pair that a pass needs (within h, or eta on the paths) was then
+  // within h + 2 · h/2.
+  if (listed_x0_.rows() != x0.rows() || listed_x0_ != x0) listed_.resize(0, 3);
   auto refresh = [&] {
-    if (listed.rows() == x1.rows() && (x1 - listed).cwiseAbs().maxCoeff() <= 0.5 * h) return;
+    if (listed_.rows() == x1.rows() && (x1 - listed_).cwiseAbs().maxCoeff() <= 0.5 * h) return false;
     candidates(x0, x1, 2.0 * h, pairs);
-    listed = x1;
+    listed_ = x1;
+    listed_x0_ = x0;
+    return true;
   };
 
   // 1. Proximity at the start: stop approach and ease apart towards the thickness, with friction.
@@ -246,24 +249,35 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
     return std::clamp(s0, 2.0 * eta, h) - s1;
   };
 
-  // 2. Collision passes: inelastic corrections, Gauss–Seidel.
+  // 2. Collision passes: inelastic corrections, Gauss–Seidel. A pass after the first tests only the
+  // pairs with a particle that the previous pass moved (the others' paths are unchanged), unless the
+  // candidate list was made anew. (The 71² cape on gc_mean_all took 7–12 passes a step over ~6,000
+  // pairs in proximity.)
   Contact c;
+  const int nv = static_cast<int>(x0.rows());
+  std::vector<char> moved(static_cast<std::size_t>(nv), 1), moving(static_cast<std::size_t>(nv), 0);
   for (int pass = 0; pass < options_.impulse_passes; ++pass) {
-    refresh();
+    const bool all = refresh() || pass == 0;
+    std::fill(moving.begin(), moving.end(), 0);
     int found = 0;
     for (const Pair& pair : pairs) {
+      if (!all) {
+        indices(pair, idx);
+        if (!moved[idx[0]] && !moved[idx[1]] && !moved[idx[2]] && !moved[idx[3]]) continue;
+      }
       const double delta = contact_correction(pair, c);
       if (delta <= 0.0) continue;
       shift_weighted_difference(x1, inverse_mass, idx, alpha, delta * c.normal);
+      for (int k = 0; k < 4; ++k) moving[idx[k]] = 1;
       ++found;
     }
+    moved.swap(moving);
     result.ccd_collisions += found;
     ++result.ccd_passes;
     if (found == 0) return result;
   }
 
   // 3. Rigid impact zones.
-  const int nv = static_cast<int>(x0.rows());
   UnionFind zones(nv);
   std::vector<char> in_zone(static_cast<std::size_t>(nv), 0);
   for (int pass = 0; pass < options_.zone_passes; ++pass) {

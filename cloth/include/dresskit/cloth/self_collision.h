@@ -83,6 +83,8 @@ class SelfCollision {
   std::vector<int> rep_;
   std::vector<int> vertex_owner_;  ///< one face per particle (-1 for particles without faces)
   Eigen::MatrixX3d lo_, hi_;       ///< per particle: its path's box, padded (candidates())
+  std::vector<Pair> pairs_;        ///< the candidate list of the last resolve()
+  Eigen::MatrixX3d listed_x0_, listed_;  ///< the x0 and x1 it was made for
   SelfCollisionOptions options_;
   TriangleBvh bvh_;
 };
