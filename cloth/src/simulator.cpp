@@ -569,14 +569,19 @@ StepResult ClothSimulator::try_step(double dt) {
   if (r.ok && !options_.colliders.empty()) collide(x0, r);
   r.collision_seconds = since(t);
   // Cloth–cloth last: whatever moved the particles before, the paths from x0 gain no intersection.
-  // Its corrections can move a particle resting on a collider into the margin: then the collider pass
-  // runs again, and the cloth–cloth pass after it (the second rarely has anything to do).
+  // Its corrections can move a particle resting on a collider into the margin, or squeeze a double
+  // layer below its thickness limit: then the collider pass and the length limits run again, and the
+  // cloth–cloth pass after them (up to twice more; later rounds rarely have anything to do).
   t = Clock::now();
-  for (int round = 0; round < 2 && r.ok && self_ && x_.allFinite(); ++round) {
-    if (round == 1) {
-      const int pushed = r.collisions;
-      collide(x0, r);
-      if (r.collisions == pushed) break;
+  for (int round = 0; round < 6 && r.ok && self_ && x_.allFinite(); ++round) {
+    if (round > 0) {
+      const int pushed = r.collisions, limited = r.springs_limited;
+      if (!model_.springs.limited.empty() || options_.strain_limiting) {
+        const Eigen::MatrixX3d before = x_;
+        limit_strain(before, r);
+      }
+      if (!options_.colliders.empty()) collide(x0, r);
+      if (r.collisions == pushed && r.springs_limited == limited) break;
     }
     const Eigen::MatrixX3d before = x_;
     const SelfCollisionResult s = self_->resolve(x0, x_, inverse_mass_);
@@ -588,7 +593,7 @@ StepResult ClothSimulator::try_step(double dt) {
     r.self.zone_particles += s.zone_particles;
     r.self.held = r.self.held || s.held;
     v_ += (x_ - before) / dt_;
-    if (options_.colliders.empty() || (x_ - before).cwiseAbs().maxCoeff() == 0.0) break;
+    if ((x_ - before).cwiseAbs().maxCoeff() == 0.0) break;
   }
   r.self_collision_seconds = since(t);
   if (r.ok && (!x_.allFinite() || !v_.allFinite())) {
