@@ -1,5 +1,6 @@
 #include "dresskit/cloth/layers.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -7,12 +8,14 @@
 #include <unordered_map>
 
 #include "dresskit/cloth/geometry.h"
+#include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/mesh/errors.h"
 
 namespace dresskit {
 namespace {
 
-void append_spring(SpringSet& s, int i, int j, double rest, double k_rest, double k_knee, SpringType type) {
+void append_spring(SpringSet& s, int i, int j, double rest, double k_rest, double k_knee,
+                   SpringType type) {
   s.i.push_back(i);
   s.j.push_back(j);
   s.rest_length.push_back(rest);
@@ -50,7 +53,8 @@ int layer_count(const ClothModel& m) { return m.layer.size() ? m.layer.maxCoeff(
 Eigen::MatrixX3d rest_vertex_normals(const ClothModel& m) {
   Eigen::MatrixX3d n = Eigen::MatrixX3d::Zero(m.rest_positions.rows(), 3);
   for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
-    const Eigen::Vector3d a = m.rest_positions.row(m.faces(f, 0)), b = m.rest_positions.row(m.faces(f, 1)),
+    const Eigen::Vector3d a = m.rest_positions.row(m.faces(f, 0)),
+                          b = m.rest_positions.row(m.faces(f, 1)),
                           c = m.rest_positions.row(m.faces(f, 2));
     const Eigen::Vector3d area_normal = (b - a).cross(c - a);  // twice the area, along the normal
     for (int k = 0; k < 3; ++k) n.row(m.faces(f, k)) += area_normal.transpose();
@@ -69,7 +73,8 @@ ClothModel make_double_layer(const ClothModel& single, const LayerThickness& t) 
                      std::to_string(t.min) + ", " + std::to_string(t.max) +
                      "] m: need 0 < min ≤ thickness ≤ max");
   }
-  if (layer_count(single) != 1) throw InputError("a double layer is made from a single-layer cloth");
+  if (layer_count(single) != 1)
+    throw InputError("a double layer is made from a single-layer cloth");
   if (single.faces.rows() == 0) throw InputError("a double layer needs a cloth with faces");
   const int nv = static_cast<int>(single.rest_positions.rows());
   const Eigen::MatrixX3d normals = rest_vertex_normals(single);
@@ -146,13 +151,15 @@ ClothModel make_double_layer(const ClothModel& single, const LayerThickness& t) 
     faces.emplace_back(a, b + nv, a + nv);
   }
   d.faces.resize(static_cast<Eigen::Index>(faces.size()), 3);
-  for (std::size_t f = 0; f < faces.size(); ++f) d.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    d.faces.row(static_cast<Eigen::Index>(f)) = faces[f].transpose();
   return d;
 }
 
 std::vector<int> garment_offsets(const std::vector<ClothModel>& garments) {
   std::vector<int> offsets{0};
-  for (const ClothModel& g : garments) offsets.push_back(offsets.back() + static_cast<int>(g.rest_positions.rows()));
+  for (const ClothModel& g : garments)
+    offsets.push_back(offsets.back() + static_cast<int>(g.rest_positions.rows()));
   return offsets;
 }
 
@@ -210,7 +217,8 @@ LayerGap layer_gap(const ClothModel& m, const Eigen::MatrixX3d& x) {
   return gap;
 }
 
-LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
+LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x,
+                           const std::vector<Collider>& colliders) {
   const int nv = static_cast<int>(x.rows());
   LayerContacts c;
   c.below_face.assign(nv, -1);
@@ -243,21 +251,26 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const
     if (m.layer[m.faces(f, 1)] != l || m.layer[m.faces(f, 2)] != l) continue;
     faces[l].push_back(static_cast<int>(f));
     for (int k = 0; k < 3; ++k)
-      cell_size = std::max(cell_size, (projected.row(m.faces(f, k)) - projected.row(m.faces(f, (k + 1) % 3))).norm());
+      cell_size =
+          std::max(cell_size,
+                   (projected.row(m.faces(f, k)) - projected.row(m.faces(f, (k + 1) % 3))).norm());
   }
   if (cell_size <= 0.0) return c;
   auto cell = [cell_size](const Eigen::Vector3d& p) {
     const Eigen::Vector3i q = (p / cell_size).array().floor().cast<int>();
     return (static_cast<std::int64_t>(q.x() & 0x1fffff) << 42) |
-           (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) | static_cast<std::int64_t>(q.z() & 0x1fffff);
+           (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) |
+           static_cast<std::int64_t>(q.z() & 0x1fffff);
   };
   for (int below = 0; below + 1 < layers; ++below) {
-    // Each face of the layer beneath in the cell of its projected centroid; a point inside a face is
-    // within one longest edge of its centroid, so the 27 cells around the point hold it.
+    // Each face of the layer beneath in the cell of its projected centroid; a point inside a face
+    // is within one longest edge of its centroid, so the 27 cells around the point hold it.
     std::unordered_map<std::int64_t, std::vector<int>> grid;
     for (int f : faces[below]) {
-      const Eigen::Vector3d centroid =
-          (projected.row(m.faces(f, 0)) + projected.row(m.faces(f, 1)) + projected.row(m.faces(f, 2))).transpose() / 3.0;
+      const Eigen::Vector3d centroid = (projected.row(m.faces(f, 0)) +
+                                        projected.row(m.faces(f, 1)) + projected.row(m.faces(f, 2)))
+                                           .transpose() /
+                                       3.0;
       grid[cell(centroid)].push_back(f);
     }
     for (int p = 0; p < nv; ++p) {
@@ -273,14 +286,18 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x, const
             if (it == grid.end()) continue;
             for (int f : it->second) {
               // Barycentric coordinates of P in the projected triangle (in its plane).
-              const Eigen::Vector3d A = projected.row(m.faces(f, 0)), e0 = projected.row(m.faces(f, 1)).transpose() - A,
+              const Eigen::Vector3d A = projected.row(m.faces(f, 0)),
+                                    e0 = projected.row(m.faces(f, 1)).transpose() - A,
                                     e1 = projected.row(m.faces(f, 2)).transpose() - A, e2 = P - A;
-              const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = e2.dot(e0), d21 = e2.dot(e1);
+              const double d00 = e0.dot(e0), d01 = e0.dot(e1), d11 = e1.dot(e1), d20 = e2.dot(e0),
+                           d21 = e2.dot(e1);
               const double denom = d00 * d11 - d01 * d01;
               if (denom <= 1e-30) continue;
-              const double v = (d11 * d20 - d01 * d21) / denom, w = (d00 * d21 - d01 * d20) / denom, u = 1.0 - v - w;
+              const double v = (d11 * d20 - d01 * d21) / denom, w = (d00 * d21 - d01 * d20) / denom,
+                           u = 1.0 - v - w;
               if (std::min({u, v, w}) < -1e-6) continue;
-              const Eigen::Vector3d X = u * x.row(m.faces(f, 0)) + v * x.row(m.faces(f, 1)) + w * x.row(m.faces(f, 2));
+              const Eigen::Vector3d X =
+                  u * x.row(m.faces(f, 0)) + v * x.row(m.faces(f, 1)) + w * x.row(m.faces(f, 2));
               const double d2 = (X - x.row(p).transpose()).squaredNorm();
               if (d2 < best) {
                 best = d2;
@@ -299,32 +316,102 @@ double LayerContacts::height_below(int p, const ClothModel& m, const Eigen::Matr
   const int f = below_face[p];
   double h = 0.0;
   Eigen::Vector3d unused;
-  for (int k = 0; k < 3; ++k) h += below_weights(p, k) * colliders[collider[p]].distance(x.row(m.faces(f, k)), &unused);
+  for (int k = 0; k < 3; ++k)
+    h += below_weights(p, k) * colliders[collider[p]].distance(x.row(m.faces(f, k)), &unused);
   return h;
 }
 
-LayerOrder layer_order(const ClothModel& m, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders) {
-  const LayerContacts c = match_layers(m, x, colliders);
-  LayerOrder order;
-  // A particle that the heights put below the layer beneath is confirmed by a ray: out from it along
-  // its collider's normal, it must cross that layer an odd number of times (be covered by it). Where
-  // the layer beneath hangs in folds far from the collider, the nearest-normal projection can pick a
-  // fold beside the particle; the ray tells a particle in a valley between folds from one under them.
-  const double reach = 2.0 * (x.colwise().maxCoeff() - x.colwise().minCoeff()).norm();
-  for (int p = 0; p < x.rows(); ++p) {
-    if (c.below_face[p] < 0) continue;
-    ++order.checked;
-    const int l = m.layer[p];
-    const double tolerance = 0.25 * (m.layer_offset[l] - m.layer_offset[l - 1]);
-    if (c.distance[p] >= c.height_below(p, m, x, colliders) - tolerance) continue;
-    const Eigen::Vector3d from = x.row(p).transpose(), to = from + reach * c.normal.row(p).transpose();
-    int crossings = 0;
-    for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
-      const int a = m.faces(f, 0), b = m.faces(f, 1), d = m.faces(f, 2);
-      if (m.layer[a] != l - 1 || m.layer[b] != l - 1 || m.layer[d] != l - 1) continue;
-      crossings += segment_crosses_triangle(from, to, x.row(a).transpose(), x.row(b).transpose(), x.row(d).transpose());
+namespace {
+
+/// Area-weighted vertex normals of the faces F at x (rows of particles without faces stay zero).
+Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F) {
+  Eigen::MatrixX3d n = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::RowVector3d a = x.row(F(f, 0)), b = x.row(F(f, 1)), c = x.row(F(f, 2));
+    const Eigen::RowVector3d area_normal = (b - a).cross(c - a);
+    for (int k = 0; k < 3; ++k) n.row(F(f, k)) += area_normal;
+  }
+  for (Eigen::Index i = 0; i < n.rows(); ++i)
+    if (n.row(i).norm() > 0.0) n.row(i).normalize();
+  return n;
+}
+
+/// For each particle of layer l, its side of the layer beneath: the signed distance from its
+/// nearest point q on that layer along the layer's normal interpolated at q, or NaN when q lies on
+/// the layer's border (p is beside it, not over or under it) or farther than reach.
+Eigen::VectorXd sides(const ClothModel& m, const Eigen::MatrixX3d& x, int l, double reach) {
+  Eigen::VectorXd side =
+      Eigen::VectorXd::Constant(x.rows(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<int> beneath;
+  for (Eigen::Index f = 0; f < m.faces.rows(); ++f)
+    if (m.layer[m.faces(f, 0)] == l - 1) beneath.push_back(static_cast<int>(f));
+  if (beneath.empty()) return side;
+  Eigen::MatrixX3i F(static_cast<Eigen::Index>(beneath.size()), 3);
+  for (std::size_t k = 0; k < beneath.size(); ++k)
+    F.row(static_cast<Eigen::Index>(k)) = m.faces.row(beneath[k]);
+  // Border edges and particles of the layer beneath (an edge of one face).
+  std::map<std::pair<int, int>, int> edge_faces;
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) ++edge_faces[std::minmax(F(f, k), F(f, (k + 1) % 3))];
+  std::vector<char> border_particle(static_cast<std::size_t>(x.rows()), 0);
+  for (const auto& [e, count] : edge_faces)
+    if (count == 1) border_particle[e.first] = border_particle[e.second] = 1;
+  const Eigen::MatrixX3d normal = vertex_normals(x, F);
+  const TriangleBvh bvh(x, F);
+  for (Eigen::Index p = 0; p < x.rows(); ++p) {
+    if (m.layer[p] != l) continue;
+    Eigen::Vector3d q;
+    double d2 = 0.0;
+    const int f = bvh.closest(x.row(p).transpose(), &q, &d2, reach * reach);
+    if (f < 0) continue;
+    const int a = F(f, 0), b = F(f, 1), c = F(f, 2);
+    Eigen::Vector3d w;
+    closest_point_on_triangle(x.row(p).transpose(), x.row(a).transpose(), x.row(b).transpose(),
+                              x.row(c).transpose(), &w);
+    // On the face's edge opposite corner k when w[k] ≈ 0: a border edge (or, at a corner, a border
+    // particle) means p lies beyond the layer's border.
+    const int corner[3] = {a, b, c};
+    bool beyond = false;
+    for (int k = 0; k < 3; ++k) {
+      if (w[k] > 1e-9) continue;
+      const int u = corner[(k + 1) % 3], v = corner[(k + 2) % 3];
+      if (edge_faces[std::minmax(u, v)] == 1) beyond = true;
+      if (w[(k + 1) % 3] <= 1e-9 && border_particle[v]) beyond = true;
+      if (w[(k + 2) % 3] <= 1e-9 && border_particle[u]) beyond = true;
     }
-    order.violations += crossings % 2;
+    if (beyond) continue;
+    const Eigen::Vector3d n =
+        (w[0] * normal.row(a) + w[1] * normal.row(b) + w[2] * normal.row(c)).transpose();
+    if (n.norm() == 0.0) continue;
+    side[p] = (x.row(p).transpose() - q).dot(n.normalized());
+  }
+  return side;
+}
+
+}  // namespace
+
+LayerOrder layer_order(const ClothModel& m, const Eigen::MatrixX3d& x,
+                       const std::vector<Collider>& colliders) {
+  (void)colliders;
+  LayerOrder order;
+  const int layers = static_cast<int>(m.layer_offset.size());
+  for (int l = 1; l < layers; ++l) {
+    const double spacing = std::max(m.layer_offset[l] - m.layer_offset[l - 1], 1e-4);
+    const double reach = 10.0 * spacing, tolerance = 0.25 * spacing;
+    // Which side is outside: the side the layer lies on at rest, where the layers are in order (the
+    // faces' winding is the input's).
+    const Eigen::VectorXd rest =
+        sides(m, m.rest_positions, l, std::numeric_limits<double>::infinity());
+    double outward = 0.0;
+    for (Eigen::Index p = 0; p < rest.size(); ++p)
+      if (!std::isnan(rest[p])) outward += rest[p];
+    const double sign = outward < 0.0 ? -1.0 : 1.0;
+    const Eigen::VectorXd now = sides(m, x, l, reach);
+    for (Eigen::Index p = 0; p < now.size(); ++p) {
+      if (std::isnan(now[p])) continue;
+      ++order.checked;
+      order.violations += sign * now[p] < -tolerance;
+    }
   }
   return order;
 }

@@ -39,7 +39,7 @@ ClothModel stack_layers(const std::vector<ClothModel>& garments, double separati
 std::vector<int> garment_offsets(const std::vector<ClothModel>& garments);
 
 struct LayerGap {
-  int springs = 0;  ///< layer_structural springs measured
+  int springs = 0;                          ///< layer_structural springs measured
   double min = 0.0, mean = 0.0, max = 0.0;  ///< their lengths [m]
 };
 /// Distances between the two layers of every double layer at positions x.
@@ -51,26 +51,32 @@ LayerGap layer_gap(const ClothModel& model, const Eigen::MatrixX3d& x);
 /// layer's border). Also each
 /// particle's nearest collider, distance and normal.
 struct LayerContacts {
-  std::vector<int> below_face;   ///< index into ClothModel::faces, −1 none
+  std::vector<int> below_face;     ///< index into ClothModel::faces, −1 none
   Eigen::MatrixX3d below_weights;  ///< barycentric weights of p in that face
-  std::vector<int> collider;     ///< −1 without colliders
-  Eigen::VectorXd distance;      ///< signed, to that collider [m]
-  Eigen::MatrixX3d normal;       ///< its outward normal at the particle
+  std::vector<int> collider;       ///< −1 without colliders
+  Eigen::VectorXd distance;        ///< signed, to that collider [m]
+  Eigen::MatrixX3d normal;         ///< its outward normal at the particle
   /// The layer beneath's distance from p's collider, interpolated at p (needs below_face[p] ≥ 0).
   double height_below(int p, const ClothModel& model, const Eigen::MatrixX3d& x,
                       const std::vector<Collider>& colliders) const;
 };
-LayerContacts match_layers(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
+LayerContacts match_layers(const ClothModel& model, const Eigen::MatrixX3d& x,
+                           const std::vector<Collider>& colliders);
 
 struct LayerOrder {
-  int checked = 0;     ///< particles of layers ≥ 1 that had a particle of the layer below beneath them
-  int violations = 0;  ///< of those, the ones lying below the layer beneath
+  int checked = 0;     ///< particles of layers ≥ 1 lying over or under the layer beneath, near it
+  int violations = 0;  ///< of those, the ones on its inner side
 };
-/// Layer order on analytic colliders: each particle p of layer ℓ ≥ 1 is compared with the layer
-/// beneath, interpolated at p (match_layers); p violates the order when its distance from its nearest
-/// collider is smaller than the layer beneath's there by more than a quarter of the two layers'
-/// offset difference and the ray out from p along the collider's normal crosses the layer beneath an
-/// odd number of times (p is covered by it). Without colliders nothing is checked.
-LayerOrder layer_order(const ClothModel& model, const Eigen::MatrixX3d& x, const std::vector<Collider>& colliders);
+/// Layer order: each particle p of layer ℓ ≥ 1 within 10 layer spacings (the two layers' offset
+/// difference) of the layer beneath is compared with its nearest point q there: p violates the
+/// order when it lies on the layer's inner side, (p − q)·n(q) < −spacing/4, with n the layer's
+/// vertex normals interpolated at q, turned to the side the layer lies on at rest. Particles whose
+/// nearest point is on the layer's border lie beside it and are not checked. A local test: where
+/// hanging layers curl and fold together, a ray or a height along a collider's normal can cross the
+/// layer beneath in order (measured: such a test flagged 1–3 particles of curled hems in 7 of 8
+/// slightly shifted three-layer drops with no crossing at all); the side of the nearest point
+/// cannot. The colliders are not needed (kept for the callers).
+LayerOrder layer_order(const ClothModel& model, const Eigen::MatrixX3d& x,
+                       const std::vector<Collider>& colliders);
 
 }  // namespace dresskit
