@@ -81,6 +81,14 @@ SelfCollision::SelfCollision(const Eigen::MatrixX3i& faces, int particles, std::
   for (int f = 0; f < faces_.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (vertex_owner_[faces_(f, k)] < 0) vertex_owner_[faces_(f, k)] = f;
+  vertex_faces_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
+  for (int f = 0; f < faces_.rows(); ++f)
+    for (int k = 0; k < 3; ++k) ++vertex_faces_start_[faces_(f, k) + 1];
+  for (int v = 0; v < particles; ++v) vertex_faces_start_[v + 1] += vertex_faces_start_[v];
+  vertex_faces_.resize(static_cast<std::size_t>(vertex_faces_start_.back()));
+  std::vector<int> fill(vertex_faces_start_.begin(), vertex_faces_start_.end() - 1);
+  for (int f = 0; f < faces_.rows(); ++f)
+    for (int k = 0; k < 3; ++k) vertex_faces_[fill[faces_(f, k)]++] = f;
 }
 
 bool SelfCollision::vertex_in_face(int v, int f) const {
@@ -132,14 +140,14 @@ void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3
     for (int k = 0; k < 3; ++k) {
       const int v = faces_(ta, k);
       if (vertex_owner_[v] == ta && !vertex_in_face(v, tb) && overlap({v}, {A, B, C}))
-        out.push_back({0, v, tb});
+        out.push_back({0, v, tb, 0.0});
       const int e = edges_.face_edges(ta, k);
       if (edges_.owner[e] != ta) continue;
       for (int m = 0; m < 3; ++m) {
         const int e2 = edges_.face_edges(tb, m);
         if (edges_.owner[e2] != tb || edges_touch(e, e2)) continue;
         if (overlap({edges_.i[e], edges_.j[e]}, {edges_.i[e2], edges_.j[e2]}))
-          out.push_back({1, e, e2});
+          out.push_back({1, e, e2, 0.0});
       }
     }
   };
@@ -150,9 +158,137 @@ void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3
     for (int k = 0; k < 3; ++k) {
       const int v = faces_(tb, k);
       if (vertex_owner_[v] == tb && !vertex_in_face(v, ta) && overlap({v}, {A, B, C}))
-        out.push_back({0, v, ta});
+        out.push_back({0, v, ta, 0.0});
     }
   });
+  double w[4];
+  for (Pair& p : out) p.d0 = closest(p, x0, w).norm();
+}
+
+// The list made anew for the particles flagged in stale_ only: their pairs are dropped and found
+// again at the current positions with boxes padded by 1.25 h each (2.5 h together: a stale
+// particle may move h/2 more before the next update and a particle that is not stale up to h from
+// where it is now, so every pair that can come within h before then is listed). Each primitive
+// pair comes once: a vertex's own query gives its vertex–triangle pairs, a face's query the
+// vertices that are not stale against it, an edge's query the edges that are not stale or have a
+// larger index.
+void SelfCollision::update_candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
+                                      double h, std::vector<Pair>& out) {
+  const double pad = 1.25 * h;
+  auto stale_pair = [&](const Pair& p) {
+    int idx[4];
+    indices(p, idx);
+    return stale_[idx[0]] || stale_[idx[1]] || stale_[idx[2]] || stale_[idx[3]];
+  };
+  out.erase(std::remove_if(out.begin(), out.end(), stale_pair), out.end());
+  const std::size_t first_new = out.size();
+  bvh_.refit(x1, &x0, pad);
+  lo_ = x0.cwiseMin(x1).array() - pad;
+  hi_ = x0.cwiseMax(x1).array() + pad;
+  auto box_of = [&](std::initializer_list<int> ps) {
+    Eigen::AlignedBox3d b;
+    for (int p : ps) b.extend(Eigen::AlignedBox3d(lo_.row(p).transpose(), hi_.row(p).transpose()));
+    return b;
+  };
+  auto overlap = [&](const Eigen::AlignedBox3d& a, std::initializer_list<int> ps) {
+    return a.intersects(box_of(ps));
+  };
+  std::vector<char> face_flag(static_cast<std::size_t>(faces_.rows()), 0),
+      edge_flag(edges_.i.size(), 0);
+  std::vector<int> stale_faces, stale_edges;
+  const int nv = static_cast<int>(x1.rows());
+  for (int p = 0; p < nv; ++p) {
+    if (!stale_[p]) continue;
+    for (int k = vertex_faces_start_[p]; k < vertex_faces_start_[p + 1]; ++k) {
+      const int f = vertex_faces_[k];
+      if (!face_flag[f]) face_flag[f] = 1, stale_faces.push_back(f);
+      for (int m = 0; m < 3; ++m) {
+        const int e = edges_.face_edges(f, m);
+        if (!edge_flag[e] && (edges_.i[e] == p || edges_.j[e] == p))
+          edge_flag[e] = 1, stale_edges.push_back(e);
+      }
+    }
+    if (vertex_owner_[p] < 0) continue;
+    const Eigen::AlignedBox3d box = box_of({p});
+    bvh_.query(box, [&](int tb) {
+      if (!vertex_in_face(p, tb) && overlap(box, {faces_(tb, 0), faces_(tb, 1), faces_(tb, 2)}))
+        out.push_back({0, p, tb, 0.0});
+    });
+  }
+  for (int f : stale_faces) {
+    const Eigen::AlignedBox3d box = box_of({faces_(f, 0), faces_(f, 1), faces_(f, 2)});
+    bvh_.query(box, [&](int tb) {
+      for (int k = 0; k < 3; ++k) {
+        const int v = faces_(tb, k);
+        if (vertex_owner_[v] == tb && !stale_[v] && !vertex_in_face(v, f) && overlap(box, {v}))
+          out.push_back({0, v, f, 0.0});
+      }
+    });
+  }
+  for (int e : stale_edges) {
+    const Eigen::AlignedBox3d box = box_of({edges_.i[e], edges_.j[e]});
+    bvh_.query(box, [&](int tb) {
+      for (int m = 0; m < 3; ++m) {
+        const int e2 = edges_.face_edges(tb, m);
+        if (edges_.owner[e2] != tb || (edge_flag[e2] && e2 <= e) || edges_touch(e, e2)) continue;
+        if (overlap(box, {edges_.i[e2], edges_.j[e2]})) out.push_back({1, e, e2, 0.0});
+      }
+    });
+  }
+  double w[4];
+  for (std::size_t k = first_new; k < out.size(); ++k) out[k].d0 = closest(out[k], x0, w).norm();
+}
+
+// The closest points of a pair's two primitives at x: their weights (side A's, then side B's) and
+// the gap from B's point to A's.
+Eigen::Vector3d SelfCollision::closest(const Pair& pair, const Eigen::MatrixX3d& x,
+                                       double w[4]) const {
+  int idx[4];
+  indices(pair, idx);
+  if (pair.kind == 0) {
+    Eigen::Vector3d bary;
+    const Eigen::Vector3d q = closest_point_on_triangle(row(x, idx[0]), row(x, idx[1]),
+                                                        row(x, idx[2]), row(x, idx[3]), &bary);
+    w[0] = 1.0, w[1] = bary[0], w[2] = bary[1], w[3] = bary[2];
+    return row(x, idx[0]) - q;
+  }
+  double s, u;
+  closest_points_of_segments(row(x, idx[0]), row(x, idx[1]), row(x, idx[2]), row(x, idx[3]), &s,
+                             &u);
+  w[0] = 1.0 - s, w[1] = s, w[2] = 1.0 - u, w[3] = u;
+  return (w[0] * row(x, idx[0]) + w[1] * row(x, idx[1])) -
+         (w[2] * row(x, idx[2]) + w[3] * row(x, idx[3]));
+}
+
+// The candidate pairs closer than the thickness at x0 (their distances d0 are in the list), with
+// their closest points' weights, distance and normal (B to A; for touching pairs the surface
+// normal, to be turned against the approach).
+void SelfCollision::find_close_pairs(const Eigen::MatrixX3d& x0, const std::vector<Pair>& pairs) {
+  close_.clear();
+  const double h = options_.thickness;
+  int idx[4];
+  for (const Pair& pair : pairs) {
+    if (pair.d0 >= h) continue;
+    Close c;
+    c.pair = pair;
+    const Eigen::Vector3d gap = closest(pair, x0, c.w);
+    c.d = gap.norm();
+    if (c.d > 1e-6 * h) {
+      c.normal = gap / c.d;
+    } else {
+      indices(pair, idx);
+      c.touching = true;
+      c.normal =
+          pair.kind == 0
+              ? Eigen::Vector3d(
+                    (row(x0, idx[2]) - row(x0, idx[1])).cross(row(x0, idx[3]) - row(x0, idx[1])))
+              : Eigen::Vector3d(
+                    (row(x0, idx[1]) - row(x0, idx[0])).cross(row(x0, idx[3]) - row(x0, idx[2])));
+      if (c.normal.squaredNorm() < 1e-40) continue;
+      c.normal.normalize();
+    }
+    close_.push_back(c);
+  }
 }
 
 SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::MatrixX3d& x1,
@@ -166,59 +302,55 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   std::vector<Pair>& pairs = pairs_;
   int idx[4];
   double alpha[4];
-  // One candidate list serves all passes — and a second call for the same step (same x0) — while no
-  // particle has moved more than h/2 (per coordinate) from where it was when the list was made: it is
-  // made with pad 2h, and every pair that a pass needs (within h, or eta on the paths) was then
+  // One candidate list serves all passes — and later calls for the same step (same x0) — while no
+  // particle has moved more than h/2 (per coordinate) from where it was when the list was made: it
+  // is made with pad 2h, and every pair that a pass needs (within h, or eta on the paths) was then
   // within h + 2 · h/2.
-  if (listed_x0_.rows() != x0.rows() || listed_x0_ != x0) listed_.resize(0, 3);
+  const bool same_step = listed_x0_.rows() == x0.rows() && listed_x0_ == x0;
+  if (!same_step) {
+    listed_.resize(0, 3);
+    verified_.resize(0, 3);
+  }
+  // When a few particles have moved farther (a correction), only their pairs are found again
+  // (update_candidates: on the 100² cape on gc_mean_all, ~6 full lists a step had been made for a
+  // handful of particles each); when many have, the whole list.
+  bool rebuilt = false;
+  int updated = 0;  // particles whose pairs the last refresh() found again (flagged in stale_)
   auto refresh = [&] {
-    if (listed_.rows() == x1.rows() && (x1 - listed_).cwiseAbs().maxCoeff() <= 0.5 * h) return false;
+    updated = 0;
+    const int n = static_cast<int>(x1.rows());
+    if (listed_.rows() == n) {
+      stale_.assign(static_cast<std::size_t>(n), 0);
+      for (int p = 0; p < n; ++p)
+        if ((x1.row(p) - listed_.row(p)).cwiseAbs().maxCoeff() > 0.5 * h) stale_[p] = 1, ++updated;
+      if (updated == 0) return false;
+      if (updated * 20 < n) {
+        update_candidates(x0, x1, h, pairs);
+        for (int p = 0; p < n; ++p)
+          if (stale_[p]) listed_.row(p) = x1.row(p);
+        return false;
+      }
+      updated = 0;
+    }
     candidates(x0, x1, 2.0 * h, pairs);
     listed_ = x1;
     listed_x0_ = x0;
+    rebuilt = true;
     return true;
   };
 
   // 1. Proximity at the start: stop approach and ease apart towards the thickness, with friction.
+  // The pairs within h at x0, with their closest points, depend on x0 alone: found once a step.
   refresh();
-  for (const Pair& pair : pairs) {
-    indices(pair, idx);
-    double w[4];
-    Eigen::Vector3d gap;
-    if (pair.kind == 0) {
-      Eigen::Vector3d bary;
-      const Eigen::Vector3d q = closest_point_on_triangle(row(x0, idx[0]), row(x0, idx[1]),
-                                                          row(x0, idx[2]), row(x0, idx[3]), &bary);
-      w[0] = 1.0, w[1] = bary[0], w[2] = bary[1], w[3] = bary[2];
-      gap = row(x0, idx[0]) - q;
-    } else {
-      double s, u;
-      closest_points_of_segments(row(x0, idx[0]), row(x0, idx[1]), row(x0, idx[2]), row(x0, idx[3]),
-                                 &s, &u);
-      w[0] = 1.0 - s, w[1] = s, w[2] = 1.0 - u, w[3] = u;
-      gap = (w[0] * row(x0, idx[0]) + w[1] * row(x0, idx[1])) -
-            (w[2] * row(x0, idx[2]) + w[3] * row(x0, idx[3]));
-    }
-    const double d = gap.norm();
-    if (d >= h) continue;
+  if (!same_step) find_close_pairs(x0, pairs);
+  for (const Close& close : close_) {
+    indices(close.pair, idx);
+    signed_weights(close.pair.kind, close.w, alpha);
     ++result.proximity_pairs;
-    signed_weights(pair.kind, w, alpha);
-    Eigen::Vector3d n;
-    if (d > 1e-6 * h) {
-      n = gap / d;
-    } else {  // touching: the surface normal (triangle, or across the two edges), against the
-              // approach
-      n = pair.kind == 0
-              ? Eigen::Vector3d(
-                    (row(x0, idx[2]) - row(x0, idx[1])).cross(row(x0, idx[3]) - row(x0, idx[1])))
-              : Eigen::Vector3d(
-                    (row(x0, idx[1]) - row(x0, idx[0])).cross(row(x0, idx[3]) - row(x0, idx[2])));
-      if (n.squaredNorm() < 1e-40) continue;
-      n.normalize();
-      if (n.dot(weighted(x1, idx, alpha)) < 0.0) n = -n;
-    }
+    Eigen::Vector3d n = close.normal;
+    if (close.touching && n.dot(weighted(x1, idx, alpha)) < 0.0) n = -n;  // against the approach
     const double s1 = n.dot(weighted(x1, idx, alpha));
-    const double delta = d + 0.1 * (h - d) - s1;
+    const double delta = close.d + 0.1 * (h - close.d) - s1;
     if (delta <= 0.0) continue;
     shift_weighted_difference(x1, inverse_mass, idx, alpha, delta * n);
     ++result.repulsions;
@@ -236,6 +368,21 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   // change of P along the normal), or 0.
   auto contact_correction = [&](const Pair& pair, Contact& c) {
     indices(pair, idx);
+    // The distance between the two primitives changes by at most the largest relative motion of a
+    // point of one against a point of the other (both move linearly; their points are convex
+    // combinations): a pair that starts farther apart than eta plus that cannot touch on the way.
+    // On a cloth at rest, or falling as a whole, this skips nearly every pair's path test.
+    const int side_a = pair.kind == 0 ? 1 : 2;
+    double reach2 = 0.0;
+    for (int i = 0; i < side_a; ++i)
+      for (int j = side_a; j < 4; ++j)
+        reach2 = std::max(
+            reach2,
+            ((x1.row(idx[i]) - x0.row(idx[i])) - (x1.row(idx[j]) - x0.row(idx[j]))).squaredNorm());
+    if (pair.d0 - std::sqrt(reach2) > eta) {
+      c = Contact();
+      return 0.0;
+    }
     c = pair.kind == 0 ? vertex_triangle_ccd(row(x0, idx[0]), row(x1, idx[0]), row(x0, idx[1]),
                                              row(x1, idx[1]), row(x0, idx[2]), row(x1, idx[2]),
                                              row(x0, idx[3]), row(x1, idx[3]), eta)
@@ -250,14 +397,27 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   };
 
   // 2. Collision passes: inelastic corrections, Gauss–Seidel. A pass after the first tests only the
-  // pairs with a particle that the previous pass moved (the others' paths are unchanged), unless the
-  // candidate list was made anew. (The 71² cape on gc_mean_all took 7–12 passes a step over ~6,000
-  // pairs in proximity.)
+  // pairs with a particle that the previous pass moved (the others' paths are unchanged), unless
+  // the candidate list was made anew. (The 71² cape on gc_mean_all took 7–12 passes a step over
+  // ~6,000 pairs in proximity.)
   Contact c;
   const int nv = static_cast<int>(x0.rows());
+  // At the end of a call every listed pair is clear of contact (the last pass found none, or the
+  // zones resolved them all, or nothing moved). So a later call for the same step, with the same
+  // list, need test only the pairs with a particle that has moved since (the proximity phase or the
+  // caller's collider pass and length limits moved a few).
   std::vector<char> moved(static_cast<std::size_t>(nv), 1), moving(static_cast<std::size_t>(nv), 0);
+  const bool all_first = rebuilt || verified_.rows() != nv;
+  if (!all_first)
+    for (int p = 0; p < nv; ++p) moved[p] = (x1.row(p) != verified_.row(p));
+  auto done = [&](const SelfCollisionResult& r) {
+    verified_ = x1;
+    return r;
+  };
   for (int pass = 0; pass < options_.impulse_passes; ++pass) {
-    const bool all = refresh() || pass == 0;
+    const bool all = refresh() || (pass == 0 && all_first);
+    if (updated)  // the pairs found again are tested in this pass
+      for (int p = 0; p < nv; ++p) moved[p] = moved[p] || stale_[p];
     std::fill(moving.begin(), moving.end(), 0);
     int found = 0;
     for (const Pair& pair : pairs) {
@@ -274,7 +434,7 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
     moved.swap(moving);
     result.ccd_collisions += found;
     ++result.ccd_passes;
-    if (found == 0) return result;
+    if (found == 0) return done(result);
   }
 
   // 3. Rigid impact zones.
@@ -303,7 +463,7 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
         const int z = zones.find(p);
         if (!counted[z]) ++result.zones, counted[z] = 1;
       }
-      return result;
+      return done(result);
     }
     // Each zone moves rigidly from x0 with the momentum and angular momentum of its particles'
     // proposed motion; a zone holding a pinned particle stays where it was.
@@ -362,7 +522,7 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   for (int p = 0; p < nv; ++p)
     if (inverse_mass[p] > 0.0) x1.row(p) = x0.row(p);
   result.held = true;
-  return result;
+  return done(result);
 }
 
 int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,

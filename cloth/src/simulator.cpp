@@ -12,6 +12,7 @@
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/spring_kernels.h"
 #include "dresskit/mesh/errors.h"
+#include "cpu_clock.h"
 #include "simulator_internal.h"
 
 namespace dresskit {
@@ -542,7 +543,7 @@ StepResult ClothSimulator::try_step(double dt) {
   dt_ = dt;
   const Eigen::MatrixX3d x0 = x_, v0 = v_;
   move_pins(time_ + dt);
-  using Clock = std::chrono::steady_clock;
+  using Clock = ThreadCpuClock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
   switch (options_.integrator) {

@@ -70,10 +70,24 @@ class SelfCollision {
   struct Pair {
     int kind;  ///< 0 vertex–triangle (a = vertex, b = face), 1 edge–edge (a, b edges)
     int a, b;
+    double d0;  ///< distance of the two primitives at the step's start (x0)
   };
+  Eigen::Vector3d closest(const Pair& pair, const Eigen::MatrixX3d& x, double w[4]) const;
   /// Candidate pairs whose swept boxes (x0 → x1, padded by pad) overlap.
   void candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double pad,
                   std::vector<Pair>& out);
+  /// A pair within the thickness at the step's start: closest points' weights, distance, normal.
+  struct Close {
+    Pair pair;
+    double w[4];
+    double d;
+    Eigen::Vector3d normal;
+    bool touching = false;  ///< closer than 1e-6 h: normal = the surface's, turned at use
+  };
+  /// The list brought up to date for the particles flagged in stale_ (see the .cpp).
+  void update_candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double h,
+                         std::vector<Pair>& out);
+  void find_close_pairs(const Eigen::MatrixX3d& x0, const std::vector<Pair>& pairs);
   bool vertex_in_face(int v, int f) const;
   bool edges_touch(int e1, int e2) const;
   void indices(const Pair& p, int idx[4]) const;
@@ -81,10 +95,16 @@ class SelfCollision {
   Eigen::MatrixX3i faces_;
   EdgeList edges_;
   std::vector<int> rep_;
-  std::vector<int> vertex_owner_;  ///< one face per particle (-1 for particles without faces)
-  Eigen::MatrixX3d lo_, hi_;       ///< per particle: its path's box, padded (candidates())
-  std::vector<Pair> pairs_;        ///< the candidate list of the last resolve()
+  std::vector<int> vertex_owner_;
+  std::vector<int> vertex_faces_start_, vertex_faces_;  ///< faces around each particle (CSR)
+  std::vector<char> stale_;  ///< per particle: moved more than h/2 since its pairs were listed ///<
+                             ///< one face per particle (-1 for particles without faces)
+  Eigen::MatrixX3d lo_, hi_;             ///< per particle: its path's box, padded (candidates())
+  std::vector<Pair> pairs_;              ///< the candidate list of the last resolve()
   Eigen::MatrixX3d listed_x0_, listed_;  ///< the x0 and x1 it was made for
+  std::vector<Close> close_;             ///< the pairs within the thickness at listed_x0_
+  Eigen::MatrixX3d
+      verified_;  ///< x1 at the end of the last resolve() for listed_x0_: every pair clear
   SelfCollisionOptions options_;
   TriangleBvh bvh_;
 };

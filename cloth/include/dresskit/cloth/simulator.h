@@ -115,7 +115,7 @@ struct StepResult {
   int stitches_sewn = 0;     ///< stitches newly sewn (within the seam tolerance) in this step
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
-  /// Wall time of the step's phases [s] (of the last try when adaptive stepping retried): the
+  /// CPU time (this thread's) of the step's phases [s] (of the last try when adaptive stepping retried): the
   /// integrator (forces and solve; of which forces and the system's assembly: force_seconds, implicit
   /// Euler only), the layer guard and length limits, sewing, the collider pass and cloth–cloth collisions.
   double integrate_seconds = 0.0, force_seconds = 0.0, constraint_seconds = 0.0, seam_seconds = 0.0,
