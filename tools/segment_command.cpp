@@ -129,6 +129,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"bridged_edges", r.bridged_edges},
       {"duplicate_vertices_labelled", duplicates},
       {"relabelled_by_cleanup", r.relabelled_vertices},
+      {"moved_by_boundary_refinement", r.refined_vertices},
       {"normalized_cut", r.normalized_cut},
       {"clusters_before_merge", r.clusters_before_merge},
       {"axes",
@@ -146,6 +147,8 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"kmeans_restarts", o.kmeans.restarts},
         {"over_segmentation", o.over_segmentation},
         {"bridge_gaps", o.bridge_gaps},
+        {"boundary_band", o.boundary_band},
+        {"limb_tip_fraction", o.limb_tip_fraction},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
       {"seconds",
@@ -230,6 +233,15 @@ void SegmentCommand::add_to(CLI::App& app) {
       ->add_option("--over-segmentation", options.over_segmentation,
                    "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)")
       ->capture_default_str();
+  command
+      ->add_option("--boundary-band", options.boundary_band,
+                   "random-walker band around each cut, in radii of the junction (0: off)")
+      ->capture_default_str();
+  command
+      ->add_option("--limb-tip", options.limb_tip_fraction,
+                   "limb cuts follow the harmonic field from tips beyond this fraction of the "
+                   "limb's depth (0: off)")
+      ->capture_default_str();
   command->add_flag("--json", as_json, "print labels.json's summary fields as JSON");
 }
 
@@ -248,6 +260,9 @@ int SegmentCommand::run() {
   if (!forward.empty()) options.forward = axis_vector(parse_up_axis(forward));
   if (!(options.eigen.tolerance > 0)) throw InputError("--tolerance: must be positive");
   if (!(options.bridge_gaps >= 0)) throw InputError("--bridge-gaps: must be 0 or more");
+  if (!(options.boundary_band >= 0)) throw InputError("--boundary-band: must be 0 or more");
+  if (!(options.limb_tip_fraction >= 0 && options.limb_tip_fraction < 1))
+    throw InputError("--limb-tip: must be at least 0 and less than 1");
 
   const TriangleMesh mesh = load_mesh(path, load);
   SegmentationResult r;

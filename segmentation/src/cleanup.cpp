@@ -1,7 +1,12 @@
 #include "dresskit/segmentation/cleanup.h"
 
+#include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
 #include <map>
+#include <queue>
 
 namespace dresskit {
 
@@ -219,6 +224,214 @@ Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F,
     out(f) = (b == c && b != a) ? b : a;
   }
   return out;
+}
+
+namespace {
+
+// Geodesic distance (along edges, within the vertex's own label) to the nearest vertex that has a
+// neighbour of another label; `other` = the label across the nearest boundary (the neighbouring
+// label with the most affinity at that boundary vertex), −1 where there is none.
+void distance_to_boundary(const MeshGraph& graph, const Adjacency& adj,
+                          const Eigen::VectorXi& labels, std::vector<double>& dist,
+                          std::vector<int>& other) {
+  const int n = graph.num_vertices;
+  dist.assign(n, std::numeric_limits<double>::infinity());
+  other.assign(n, -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  std::map<int, double> vote;
+  for (int v = 0; v < n; ++v) {
+    if (labels(v) < 0) continue;
+    vote.clear();
+    for (int k = adj.start[v]; k < adj.start[v + 1]; ++k) {
+      const int l = labels(adj.adj[k]);
+      if (l >= 0 && l != labels(v)) vote[l] += graph.affinity(adj.edge[k]);
+    }
+    if (vote.empty()) continue;
+    other[v] = std::max_element(vote.begin(), vote.end(), [](const auto& x, const auto& y) {
+                 return x.second < y.second;
+               })->first;
+    dist[v] = 0.0;
+    heap.push({0.0, v});
+  }
+  while (!heap.empty()) {
+    const auto [d, v] = heap.top();
+    heap.pop();
+    if (d > dist[v]) continue;
+    for (int k = adj.start[v]; k < adj.start[v + 1]; ++k) {
+      const int w = adj.adj[k];
+      const double next = d + graph.length(adj.edge[k]);
+      if (labels(w) == labels(v) && next < dist[w]) {
+        dist[w] = next;
+        other[w] = other[v];
+        heap.push({next, w});
+      }
+    }
+  }
+}
+
+// Random walker (Grady 2006) on the graph: the vertices with seed ≥ 0 are fixed to their label;
+// returns #V×q, row v = the probability that a walk from v first reaches a seed of each label
+// (seeds: their own label with probability 1). Walks follow the affinities, so the probabilities
+// change fastest across concave creases. One sparse Cholesky factorisation of the free vertices'
+// Laplacian, q right-hand sides. A free patch that touches no seed keeps all-zero rows.
+Eigen::MatrixXd random_walker(const MeshGraph& graph, const Eigen::VectorXi& labels,
+                              const std::vector<int>& seed, int q) {
+  const int n = graph.num_vertices;
+  std::vector<int> index(n, -1);
+  int m = 0;
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0 && seed[v] < 0) index[v] = m++;
+  Eigen::MatrixXd P = Eigen::MatrixXd::Zero(n, q);
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0 && seed[v] >= 0) P(v, seed[v]) = 1.0;
+  if (m == 0) return P;
+  std::vector<Eigen::Triplet<double>> t;
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(m, q);
+  Eigen::VectorXd degree = Eigen::VectorXd::Zero(m);
+  for (int e = 0; e < graph.num_edges(); ++e) {
+    const int a = graph.from(e), b = graph.to(e);
+    if (labels(a) < 0 || labels(b) < 0) continue;
+    const int ia = index[a], ib = index[b];
+    if (ia < 0 && ib < 0) continue;
+    const double w = graph.affinity(e);
+    if (ia >= 0) degree(ia) += w;
+    if (ib >= 0) degree(ib) += w;
+    if (ia >= 0 && ib >= 0) {
+      t.emplace_back(ia, ib, -w);
+      t.emplace_back(ib, ia, -w);
+    } else if (ia >= 0) {
+      B(ia, seed[b]) += w;
+    } else {
+      B(ib, seed[a]) += w;
+    }
+  }
+  // A relative 1e-9 on the diagonal keeps a free patch without seeds (all-zero right-hand side)
+  // solvable; it changes the probabilities by about as much.
+  for (int i = 0; i < m; ++i) t.emplace_back(i, i, degree(i) * (1 + 1e-9) + 1e-300);
+  Eigen::SparseMatrix<double> L(m, m);
+  L.setFromTriplets(t.begin(), t.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(L);
+  if (solver.info() != Eigen::Success) return P;  // cannot happen for a positive diagonal
+  const Eigen::MatrixXd X = solver.solve(B);
+  for (int v = 0; v < n; ++v)
+    if (index[v] >= 0) P.row(v) = X.row(index[v]);
+  return P;
+}
+
+}  // namespace
+
+int refine_boundaries_random_walker(const MeshGraph& graph, const Adjacency& adj,
+                                    const Eigen::MatrixX3d& V, double band,
+                                    Eigen::VectorXi& labels) {
+  const int n = graph.num_vertices;
+  const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
+  if (q < 2 || !(band > 0)) return 0;
+  std::vector<double> dist;
+  std::vector<int> other;
+  distance_to_boundary(graph, adj, labels, dist, other);
+  // Radius of each junction (pair of labels a < b): mean distance of the boundary vertices of the
+  // pair from their centroid (r for a circular loop).
+  const auto pair = [q](int a, int b) { return std::min(a, b) * q + std::max(a, b); };
+  Eigen::MatrixXd centre = Eigen::MatrixXd::Zero(q * q, 3);
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(q * q), radius = Eigen::VectorXd::Zero(q * q);
+  for (int v = 0; v < n; ++v)
+    if (dist[v] == 0.0)
+      centre.row(pair(labels(v), other[v])) += V.row(v), ++count(pair(labels(v), other[v]));
+  for (int p = 0; p < q * q; ++p)
+    if (count(p) > 0) centre.row(p) /= count(p);
+  for (int v = 0; v < n; ++v)
+    if (dist[v] == 0.0)
+      radius(pair(labels(v), other[v])) +=
+          (V.row(v) - centre.row(pair(labels(v), other[v]))).norm();
+  for (int p = 0; p < q * q; ++p)
+    if (count(p) > 0) radius(p) /= count(p);
+  // Depth of each label: its largest distance to a boundary. The band never takes more than half
+  // of it, so that every label keeps seeds.
+  std::vector<double> depth(q, 0.0);
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0 && std::isfinite(dist[v]))
+      depth[labels(v)] = std::max(depth[labels(v)], dist[v]);
+  std::vector<int> seed(n, -1);
+  for (int v = 0; v < n; ++v) {
+    if (labels(v) < 0) continue;
+    const bool free = other[v] >= 0 && dist[v] < band * radius(pair(labels(v), other[v])) &&
+                      dist[v] < 0.5 * depth[labels(v)];
+    if (!free) seed[v] = labels(v);
+  }
+  const Eigen::MatrixXd P = random_walker(graph, labels, seed, q);
+  int changed = 0;
+  for (int v = 0; v < n; ++v) {
+    if (labels(v) < 0 || seed[v] >= 0) continue;
+    Eigen::Index best = 0;
+    if (P.row(v).maxCoeff(&best) > 1e-6 && best != labels(v)) {
+      labels(v) = static_cast<int>(best);
+      ++changed;
+    }
+  }
+  return changed;
+}
+
+int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adj, double tip_fraction,
+                      Eigen::VectorXi& labels) {
+  const int n = graph.num_vertices;
+  const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
+  if (q < 2 || !(tip_fraction > 0)) return 0;
+  Eigen::MatrixXd cut;
+  Eigen::VectorXd volume;
+  part_graph(graph, labels, q, cut, volume);
+  // The hub: a part that touches every other part (with two parts, the larger by volume).
+  int hub = -1;
+  for (int a = 0; a < q && hub < 0; ++a) {
+    bool all = true;
+    for (int b = 0; b < q; ++b) all = all && (a == b || cut(a, b) > 0);
+    if (all) hub = a;
+  }
+  if (q == 2) hub = volume(0) >= volume(1) ? 0 : 1;
+  if (hub < 0) return 0;
+  std::vector<double> dist;
+  std::vector<int> other;
+  distance_to_boundary(graph, adj, labels, dist, other);
+  std::vector<double> depth(q, 0.0);
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0 && std::isfinite(dist[v]))
+      depth[labels(v)] = std::max(depth[labels(v)], dist[v]);
+  // Seeds: each part's far end (a limb's tip, the hub's core), from tip_fraction of its depth on.
+  std::vector<int> seed(n, -1);
+  for (int v = 0; v < n; ++v)
+    if (labels(v) >= 0 && std::isfinite(dist[v]) && dist[v] >= tip_fraction * depth[labels(v)])
+      seed[v] = labels(v);
+  const Eigen::MatrixXd P = random_walker(graph, labels, seed, q);
+  // Level of each limb's cut: the mean of its field over the vertices on the limb–hub boundary
+  // (both sides).
+  Eigen::VectorXd level = Eigen::VectorXd::Zero(q), count = Eigen::VectorXd::Zero(q);
+  for (int e = 0; e < graph.num_edges(); ++e) {
+    const int i = graph.from(e), j = graph.to(e), a = labels(i), b = labels(j);
+    if (a < 0 || b < 0 || a == b || (a != hub && b != hub)) continue;
+    const int limb = a == hub ? b : a;
+    level(limb) += P(i, limb) + P(j, limb);
+    count(limb) += 2;
+  }
+  for (int l = 0; l < q; ++l)
+    if (count(l) > 0) level(l) /= count(l);
+  // A vertex belongs to the limb whose field, relative to that limb's cut level, is highest, if
+  // it is at or above the level; otherwise to the hub.
+  Eigen::VectorXi out = labels;
+  int changed = 0;
+  for (int v = 0; v < n; ++v) {
+    if (labels(v) < 0 || seed[v] >= 0) continue;
+    int best = hub;
+    double best_ratio = 1.0;
+    for (int l = 0; l < q; ++l) {
+      if (l == hub || !(level(l) > 0)) continue;
+      const double ratio = P(v, l) / level(l);
+      if (ratio >= best_ratio) best_ratio = ratio, best = l;
+    }
+    changed += best != labels(v);
+    out(v) = best;
+  }
+  labels = out;
+  return changed;
 }
 
 }  // namespace dresskit

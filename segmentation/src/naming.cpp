@@ -145,10 +145,16 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
       for (int m : ls) count += m != l && touch(l, m) > 0;
       return count;
     };
-    // Hub: the part touching the most others, then the largest.
+    // Hub: the part touching the most others, then the one sharing the most affinity with them
+    // (two trouser legs that touch at the crotch touch as many parts as the seat, but along a few
+    // edges only).
+    auto shared = [&](int l) {
+      double sum = 0;
+      for (int m : ls) sum += touch(l, m);
+      return sum;
+    };
     const int hub = *std::max_element(ls.begin(), ls.end(), [&](int a, int b) {
-      return std::make_pair(neighbours(a), geo[a].area) <
-             std::make_pair(neighbours(b), geo[b].area);
+      return std::make_pair(neighbours(a), shared(a)) < std::make_pair(neighbours(b), shared(b));
     });
     std::vector<int> limbs;
     for (int l : ls)

@@ -158,6 +158,11 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
                      std::to_string(kMaxParts) + ", the most this segmentation handles");
   if (o.max_parts < 1)
     throw InputError("max_parts: " + std::to_string(o.max_parts) + " (must be at least 1)");
+  if (!(o.boundary_band >= 0))
+    throw InputError("boundary_band: " + std::to_string(o.boundary_band) + " (must be 0 or more)");
+  if (!(o.limb_tip_fraction >= 0 && o.limb_tip_fraction < 1))
+    throw InputError("limb_tip_fraction: " + std::to_string(o.limb_tip_fraction) +
+                     " (must be at least 0 and less than 1)");
   SegmentationResult r;
   r.parts_automatic = o.parts == 0;
   const int n = mesh.num_vertices();
@@ -262,6 +267,18 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
       // A star (one hub, every other part a leaf) is as good as structure gets: stop there.
       if (best_leaves >= (comp.parts == 2 ? 2 : comp.parts - 1)) break;
     }
+    // Boundaries: re-decided by a random walker in a band around each cut, then the limb cuts
+    // reshaped along the harmonic field from the limb tips (docs/segmentation.md, "Boundaries").
+    if (o.boundary_band > 0) {
+      r.refined_vertices +=
+          refine_boundaries_random_walker(graph, adj, mesh.V, o.boundary_band, best);
+      if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, best);
+    }
+    if (o.limb_tip_fraction > 0) {
+      r.refined_vertices += reshape_limb_cuts(graph, adj, o.limb_tip_fraction, best);
+      if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, best);
+    }
+    compact_labels(best);
     for (int v : comp.vertices) labels(v) = best(v) >= 0 ? base + best(v) : -1;
     r.normalized_cut += best_ncut;
     if (relabelled >= 0) r.relabelled_vertices += relabelled;

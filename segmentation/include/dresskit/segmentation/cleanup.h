@@ -30,6 +30,29 @@ int merge_parts_towards_star(const MeshGraph& graph, int target, Eigen::VectorXi
 /// Number of leaf parts (touching exactly one other part) of a labelling (labels ≥ 0).
 int count_leaf_parts(const MeshGraph& graph, const Eigen::VectorXi& labels);
 
+/// Boundary refinement by a random walker (Grady 2006) in a band around every part boundary: the
+/// vertices of a label closer to its boundary with label b than `band` × the radius of that
+/// junction (the mean distance of the junction's boundary vertices from their centroid), and
+/// closer than half the label's depth (its largest distance to a boundary, so every label keeps
+/// seeds), are freed; the other vertices are seeds of their label, and each freed vertex takes the
+/// label whose seeds a random walk on the affinities most likely reaches first. The cut thus moves
+/// to the junction's concave crease or narrowest place within the band, whatever the mesh
+/// resolution. V is #V×3. Returns the number of vertices relabelled.
+int refine_boundaries_random_walker(const MeshGraph& graph, const Adjacency& adjacency,
+                                    const Eigen::MatrixX3d& V, double band,
+                                    Eigen::VectorXi& labels);
+
+/// Reshapes the cuts between a hub (the part touching every other) and its limbs along isolines
+/// of harmonic fields: seeds are each part's far end (vertices at least `tip_fraction` of the
+/// part's depth from its boundary: a limb's tip, the hub's core), the random walker gives each
+/// vertex the probability u_l of reaching limb l's tip first, and a vertex joins the limb with the
+/// largest u_l / c_l ≥ 1, where c_l is the mean of u_l on limb l's current cut, else the hub. Each
+/// cut keeps its mean level but follows the field: it leans where the limbs meet (lower between
+/// two legs than at the outer hip). Components that are no star are left alone. Returns the number
+/// of vertices relabelled.
+int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adjacency, double tip_fraction,
+                      Eigen::VectorXi& labels);
+
 /// #F face labels: the label that at least two corners share, else the first corner's.
 Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels);
 

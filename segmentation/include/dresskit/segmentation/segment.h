@@ -34,6 +34,12 @@ struct SegmentationOptions {
   int over_segmentation = 2;
   bool cleanup = true;           ///< one connected patch per part, then boundary smoothing
   int smoothing_iterations = 4;  ///< boundary smoothing sweeps
+  /// Half-width of the band in which the random walker re-decides the part boundaries, in radii of
+  /// each junction (refine_boundaries_random_walker); 0 = off.
+  double boundary_band = 1.0;
+  /// Limb cuts reshaped along isolines of the harmonic field from each limb's tip (vertices beyond
+  /// this fraction of the limb's depth) to the hub's core (reshape_limb_cuts); 0 = off.
+  double limb_tip_fraction = 0.95;
   /// Up and forward (facing) directions of the character; a zero vector = estimate from the mesh
   /// (up: area-weighted PCA; forward: the feet, else the PCA axis of least spread, sign +Z).
   Eigen::Vector3d up = Eigen::Vector3d::Zero();
@@ -83,6 +89,8 @@ struct SegmentationResult {
   int clusters_before_merge = 0;  ///< k-means clusters of the winning candidate (same component)
   double normalized_cut = 0.0;    ///< Σ over parts of cut / volume, summed over the components
   int relabelled_vertices = 0;    ///< vertices changed by the clean-up (candidates without merging)
+  int refined_vertices =
+      0;  ///< vertices moved by the boundary refinement (random walker, isolines)
   AxesEstimate axes;
   SegmentationTimings seconds;
 
