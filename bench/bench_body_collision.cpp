@@ -4,7 +4,8 @@
 // 20k particles, and (2) the sewn tube of examples/collisions at three resolutions (its seams
 // phase). Implicit Euler; the means are over the steps after the first quarter (the cape is falling
 // before). Goal: body collision under 1 ms per step for 10k particles on one core. Usage:
-// bench_body_collision [--steps N] [--csv FILE]
+// bench_body_collision [--steps N] [--capes 71,100,141] [--tubes 1,2,3] [--csv FILE] (cape sides in
+// particles, tube resolution multiples; "none" leaves a kind out)
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <fstream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/fabric.h"
@@ -68,14 +70,32 @@ void print(std::ofstream& out, const char* scene, int n, const Phases& p, const 
   }
 }
 
+/// "71,100" -> {71, 100}; "" or "none" -> {}.
+std::vector<int> parse_list(const std::string& text) {
+  std::vector<int> out;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    const std::size_t end = std::min(text.find(',', start), text.size());
+    const int v = std::atoi(text.substr(start, end - start).c_str());
+    if (v > 0) out.push_back(v);
+    start = end + 1;
+  }
+  return out;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   int steps = 240;
   std::string csv;
+  std::vector<int> capes = {71, 100, 141}, tubes = {1, 2, 3};
   for (int a = 1; a < argc; ++a) {
     if (!std::strcmp(argv[a], "--steps") && a + 1 < argc)
       steps = std::atoi(argv[++a]);
+    else if (!std::strcmp(argv[a], "--capes") && a + 1 < argc)
+      capes = parse_list(argv[++a]);
+    else if (!std::strcmp(argv[a], "--tubes") && a + 1 < argc)
+      tubes = parse_list(argv[++a]);
     else if (!std::strcmp(argv[a], "--csv") && a + 1 < argc)
       csv = argv[++a];
   }
@@ -99,7 +119,7 @@ int main(int argc, char** argv) {
   std::printf("ms per step; inside = particles inside the body by its distance at the end\n");
   std::printf("%-6s %9s %6s %9s %9s %9s %9s %9s %9s %8s %6s %6s\n", "scene", "particles", "steps",
               "forces", "solve", "limits", "seams", "body", "cloth", "strain", "cross", "inside");
-  for (int side : {71, 100, 141}) {
+  for (int side : capes) {
     const TriangleMesh grid =
         make_grid({0.8, 0.8}, {side, side}, {0.0, 1.78, 0.0}, Eigen::Vector3d::UnitY());
     SimulationOptions o;
@@ -117,7 +137,7 @@ int main(int argc, char** argv) {
     print(out, "cape", side * side, p, sim, inside);
   }
   // The sewn tube at three resolutions: the same panels, finer grids.
-  for (int scale : {1, 2, 3}) {
+  for (int scale : tubes) {
     ClothScene scene =
         load_cloth_scene(std::string(DRESSKIT_SOURCE_DIR) + "/examples/collisions/sewn_tube.json");
     if (scale > 1) {

@@ -198,7 +198,9 @@ class ClothSimulator {
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
   void push_out(const Collider& c, double margin, int i);
   void keep_layer_order(StepResult& r);
-  void sew(StepResult& r);
+  /// Sews the stitches that have come within the tolerance and holds the sewn ones closed; returns
+  /// the widest gap of a sewn stitch before it was closed [m].
+  double sew(StepResult& r);
   void move_pins(double t);
   /// Finds the particles in the colliders' penalty zones at the current positions (contacts_).
   void find_contacts();
