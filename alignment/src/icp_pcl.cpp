@@ -3,7 +3,6 @@
 #include <pcl/common/transforms.h>
 #include <pcl/console/print.h>
 #include <pcl/features/normal_3d.h>
-#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_types.h>
 #include <pcl/registration/correspondence_rejection_median_distance.h>
 #include <pcl/registration/icp.h>
@@ -11,10 +10,13 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <memory>
 #include <numeric>
 #include <random>
 
 #include "dresskit/alignment/icp.h"
+#include "kd_tree.h"
 
 namespace dresskit {
 namespace {
@@ -72,6 +74,41 @@ struct CountingIcp : Base {
 using Icp = CountingIcp<pcl::IterativeClosestPointWithNormals<PointT, PointT, double>>;
 using ConvergenceState = pcl::registration::DefaultConvergenceCriteria<double>::ConvergenceState;
 
+// Nearest-neighbour correspondences from our k-d tree (see kd_tree.h for why not PCL's): one
+// target point per source point within the stage's maximum distance; distance = squared distance,
+// as PCL's own estimation reports it (the median rejector works on these).
+class TreeCorrespondences
+    : public pcl::registration::CorrespondenceEstimationBase<PointT, PointT, double> {
+ public:
+  explicit TreeCorrespondences(std::shared_ptr<const detail::KdTree3> tree)
+      : tree_3_(std::move(tree)) {
+    corr_name_ = "TreeCorrespondences";
+  }
+  void determineCorrespondences(pcl::Correspondences& out, double max_distance) override {
+    const double limit =
+        std::min<double>(max_distance * max_distance, std::numeric_limits<float>::max());
+    out.clear();
+    out.reserve(input_->size());
+    for (std::size_t i = 0; i < input_->size(); ++i) {
+      const PointT& p = (*input_)[i];
+      float d2 = 0.0f;
+      const int j =
+          tree_3_->nearest(Eigen::Vector3f(p.x, p.y, p.z), static_cast<float>(limit), &d2);
+      if (j >= 0) out.emplace_back(static_cast<int>(i), j, d2);
+    }
+  }
+  void determineReciprocalCorrespondences(pcl::Correspondences& out, double max_distance) override {
+    determineCorrespondences(out, max_distance);  // ICP here never asks for reciprocal ones
+  }
+  pcl::registration::CorrespondenceEstimationBase<PointT, PointT, double>::Ptr clone()
+      const override {
+    return pcl::make_shared<TreeCorrespondences>(*this);
+  }
+
+ private:
+  std::shared_ptr<const detail::KdTree3> tree_3_;
+};
+
 struct QuietPcl {
   QuietPcl() { pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS); }
 };
@@ -95,8 +132,15 @@ IcpResult icp_align(const PointSet& source, const PointSet& target, const IcpOpt
 
   // current maps centred source (x - cs) to centred target (y - ct).
   Eigen::Matrix4d current = translation(-ct) * initial * translation(cs);
+  std::vector<Eigen::Vector3f> target_points(target_cloud->size());
+  for (std::size_t i = 0; i < target_cloud->size(); ++i)
+    target_points[i] = (*target_cloud)[i].getVector3fMap();
+  const auto tree = std::make_shared<const detail::KdTree3>(std::move(target_points));
   Icp icp;
   icp.setInputTarget(target_cloud);
+  // PCL's own target tree is never built (force_no_recompute): correspondences come from `tree`.
+  icp.setSearchMethodTarget(pcl::make_shared<pcl::search::KdTree<PointT>>(), true);
+  icp.setCorrespondenceEstimation(pcl::make_shared<TreeCorrespondences>(tree));
   icp.setMaximumIterations(options.max_iterations);
   icp.setTransformationEpsilon(std::pow(options.translation_epsilon * diag, 2));
   icp.setTransformationRotationEpsilon(std::cos(options.rotation_epsilon_deg * M_PI / 180.0));
@@ -150,25 +194,20 @@ IcpResult icp_align(const PointSet& source, const PointSet& target, const IcpOpt
   result.transform = translation(ct) * current * translation(-cs);
   result.scale = std::cbrt(result.transform.block<3, 3>(0, 0).determinant());
   // Fitness and inlier RMSE on the source points that drove ICP (a random subset estimates them as
-  // well as all points do, for a quarter of the queries at 10k points), with ICP's target k-d tree.
-  const auto tree = icp.getSearchMethodTarget();
+  // well as all points do, for a quarter of the queries at 10k points), with the same k-d tree.
   Eigen::MatrixX3d driving(rows.size(), 3);
   for (std::size_t k = 0; k < rows.size(); ++k) driving.row(k) = source.V.row(rows[k]);
   const Eigen::MatrixX3d moved_all =
       transform_points(result.transform, driving).rowwise() - ct.transpose();
-  const double limit = std::pow(options.inlier_distance * diag, 2);
-  std::vector<int> index(1);
-  std::vector<float> d2(1);
+  const float limit = static_cast<float>(std::pow(options.inlier_distance * diag, 2));
   int inliers = 0;
   double sum = 0.0;
   for (Eigen::Index i = 0; i < moved_all.rows(); ++i) {
-    PointT p;
-    p.x = static_cast<float>(moved_all(i, 0));
-    p.y = static_cast<float>(moved_all(i, 1));
-    p.z = static_cast<float>(moved_all(i, 2));
-    if (tree->nearestKSearch(p, 1, index, d2) > 0 && d2[0] <= limit) {
+    float d2 = 0.0f;
+    // nearest() excludes points exactly at the limit; PCL's search included them (measure zero).
+    if (tree->nearest(moved_all.row(i).transpose().cast<float>(), limit, &d2) >= 0) {
       ++inliers;
-      sum += d2[0];
+      sum += d2;
     }
   }
   result.fitness = static_cast<double>(inliers) / static_cast<double>(driving.rows());
@@ -179,38 +218,29 @@ IcpResult icp_align(const PointSet& source, const PointSet& target, const IcpOpt
 
 struct PointLocator::Impl {
   Eigen::Vector3d centre;
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  int size = 0;
+  detail::KdTree3 tree;
 };
 
 PointLocator::PointLocator(const Eigen::MatrixX3d& points) : impl_(std::make_unique<Impl>()) {
-  impl_->size = static_cast<int>(points.rows());
   impl_->centre = points.rows() ? Eigen::Vector3d(points.colwise().mean().transpose())
                                 : Eigen::Vector3d::Zero();
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud(new pcl::PointCloud<pcl::PointXYZ>);
-  cloud->resize(points.rows());
-  for (Eigen::Index i = 0; i < points.rows(); ++i) {
-    const Eigen::Vector3d x = points.row(i).transpose() - impl_->centre;
-    (*cloud)[i] = pcl::PointXYZ(static_cast<float>(x.x()), static_cast<float>(x.y()),
-                                static_cast<float>(x.z()));
-  }
-  if (points.rows()) impl_->tree.setInputCloud(cloud);
+  std::vector<Eigen::Vector3f> centred(points.rows());
+  for (Eigen::Index i = 0; i < points.rows(); ++i)
+    centred[i] = (points.row(i).transpose() - impl_->centre).cast<float>();
+  impl_->tree.build(std::move(centred));
 }
 PointLocator::~PointLocator() = default;
 PointLocator::PointLocator(PointLocator&&) noexcept = default;
 PointLocator& PointLocator::operator=(PointLocator&&) noexcept = default;
-int PointLocator::size() const { return impl_->size; }
+int PointLocator::size() const { return impl_->tree.size(); }
 
 int PointLocator::nearest(const Eigen::Vector3d& p, double* squared_distance) const {
-  if (impl_->size == 0) return -1;
-  const Eigen::Vector3d x = p - impl_->centre;
-  std::vector<int> index(1);
-  std::vector<float> d2(1);
-  impl_->tree.nearestKSearch(pcl::PointXYZ(static_cast<float>(x.x()), static_cast<float>(x.y()),
-                                           static_cast<float>(x.z())),
-                             1, index, d2);
-  if (squared_distance) *squared_distance = d2[0];
-  return index[0];
+  if (impl_->tree.size() == 0) return -1;
+  float d2 = 0.0f;
+  const int i = impl_->tree.nearest((p - impl_->centre).cast<float>(),
+                                    std::numeric_limits<float>::infinity(), &d2);
+  if (squared_distance) *squared_distance = d2;
+  return i;
 }
 
 Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& V, int k) {

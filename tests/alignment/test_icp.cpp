@@ -5,6 +5,7 @@
 
 #include <limits>
 
+#include "../../alignment/src/kd_tree.h"  // private to the library; tested here
 #include "alignment/alignment_shapes.h"
 #include "dresskit/alignment/evaluation.h"
 #include "dresskit/mesh/errors.h"
@@ -144,5 +145,43 @@ TEST(Icp, PointLocatorFindsTheNearestPoint) {
     (V.rowwise() - p.transpose()).rowwise().squaredNorm().minCoeff(&brute);
     EXPECT_EQ(i, brute);
     EXPECT_NEAR(d2, (V.row(brute).transpose() - p).squaredNorm(), 1e-9);
+  }
+}
+
+TEST(Icp, KdTreeMatchesBruteForce) {
+  // The tree behind ICP's correspondences and PointLocator: nearest and k nearest within a
+  // distance limit, against a brute-force search, with duplicated points and split-plane ties.
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  std::vector<Eigen::Vector3f> points(3000);
+  for (auto& p : points) p = Eigen::Vector3f(u(rng), u(rng), 0.1f * std::round(5 * u(rng)));
+  for (int i = 0; i < 200; ++i) points[2000 + i] = points[i];  // exact duplicates
+  const detail::KdTree3 tree(points);
+  for (int q = 0; q < 300; ++q) {
+    const Eigen::Vector3f x(1.2f * u(rng), 1.2f * u(rng), 0.5f * u(rng));
+    const float limit = q % 3 ? 0.04f : 1e9f;
+    std::vector<std::pair<float, int>> all;
+    for (int i = 0; i < static_cast<int>(points.size()); ++i)
+      all.push_back({(points[i] - x).squaredNorm(), i});
+    std::sort(all.begin(), all.end());
+    float d2 = -1.0f;
+    const int i = tree.nearest(x, limit, &d2);
+    if (all[0].first < limit) {
+      ASSERT_GE(i, 0);
+      EXPECT_FLOAT_EQ(d2, all[0].first);
+      EXPECT_FLOAT_EQ((points[i] - x).squaredNorm(), all[0].first);
+    } else {
+      EXPECT_EQ(i, -1);
+    }
+    int index[7];
+    float dk[7];
+    const int n = tree.nearest_k(x, 7, limit, index, dk);
+    int expected = 0;
+    while (expected < 7 && all[expected].first < limit) ++expected;
+    ASSERT_EQ(n, expected);
+    for (int k = 0; k < n; ++k) {
+      EXPECT_FLOAT_EQ(dk[k], all[k].first) << k;
+      EXPECT_FLOAT_EQ((points[index[k]] - x).squaredNorm(), all[k].first) << k;
+    }
   }
 }
