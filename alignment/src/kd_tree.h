@@ -38,79 +38,96 @@ class KdTree3 {
   const Eigen::Vector3f& point(int index) const { return source_[index]; }
 
   /// Index of the nearest point within sqrt(max_d2) of q, or -1; *d2 gets its squared distance.
-  int nearest(const Eigen::Vector3f& q, float max_d2, float* d2) const {
-    int best = -1;
-    float best_d2 = max_d2;
+  /// hint: a point index believed to be near q (ICP: the previous iteration's match), or -1; its
+  /// distance only tightens the search bound, so the result is exact whatever the hint.
+  int nearest(const Eigen::Vector3f& q, float max_d2, float* d2, int hint = -1) const {
+    if (hint >= 0 && hint < size())
+      max_d2 = std::min(max_d2, inflate((source_[hint] - q).squaredNorm()));
     if (nodes_.empty()) return -1;
-    // Stack of (node, squared distance of q to the node's half-space along the splits so far).
-    std::pair<int, float> stack[64];
-    int top = 0;
-    stack[top++] = {0, 0.0f};
-    while (top) {
-      const auto [id, bound] = stack[--top];
-      if (bound > best_d2) continue;
-      const Node& node = nodes_[id];
-      if (node.dim < 0) {
-        for (int k = node.begin; k < node.end; ++k) {
-          const float d = (sorted_[k] - q).squaredNorm();
-          if (d < best_d2) {
-            best_d2 = d;
-            best = k;
-          }
-        }
-        continue;
-      }
-      const float diff = q[node.dim] - node.split;
-      const int near = diff <= 0 ? node.left : node.right, far = diff <= 0 ? node.right : node.left;
-      const float far_bound = std::max(bound, diff * diff);
-      if (far_bound <= best_d2) stack[top++] = {far, far_bound};
-      stack[top++] = {near, bound};
-    }
-    if (best < 0) return -1;
-    if (d2) *d2 = best_d2;
-    return order_[best];
+    Nearest1 visit{max_d2, -1};
+    float offsets[3] = {0.0f, 0.0f, 0.0f};
+    search(0, q, 0.0f, offsets, visit);
+    if (visit.best < 0) return -1;
+    if (d2) *d2 = visit.best_d2;
+    return order_[visit.best];
   }
 
   /// The (at most) k nearest points within sqrt(max_d2) of q, nearest first; returns how many.
-  /// index and d2 must hold k entries.
-  int nearest_k(const Eigen::Vector3f& q, int k, float max_d2, int* index, float* d2) const {
-    int count = 0;
-    if (nodes_.empty() || k <= 0) return 0;
-    auto worst = [&] { return count < k ? max_d2 : d2[count - 1]; };
-    std::pair<int, float> stack[64];
-    int top = 0;
-    stack[top++] = {0, 0.0f};
-    while (top) {
-      const auto [id, bound] = stack[--top];
-      if (bound > worst()) continue;
-      const Node& node = nodes_[id];
-      if (node.dim < 0) {
-        for (int p = node.begin; p < node.end; ++p) {
-          const float d = (sorted_[p] - q).squaredNorm();
-          if (d >= worst()) continue;
-          int slot = count < k ? count++ : k - 1;  // insertion sort into the k best
-          while (slot > 0 && d2[slot - 1] > d) {
-            d2[slot] = d2[slot - 1];
-            index[slot] = index[slot - 1];
-            --slot;
-          }
-          d2[slot] = d;
-          index[slot] = p;
-        }
-        continue;
-      }
-      const float diff = q[node.dim] - node.split;
-      const int near = diff <= 0 ? node.left : node.right, far = diff <= 0 ? node.right : node.left;
-      const float far_bound = std::max(bound, diff * diff);
-      if (far_bound <= worst()) stack[top++] = {far, far_bound};
-      stack[top++] = {near, bound};
+  /// index and d2 must hold k entries. hints: k point indices believed to be near q (the previous
+  /// iteration's neighbours) or nullptr; as for nearest(), they only tighten the bound.
+  int nearest_k(const Eigen::Vector3f& q, int k, float max_d2, int* index, float* d2,
+                const int* hints = nullptr) const {
+    if (hints) {
+      float bound = 0.0f;
+      for (int m = 0; m < k && bound < max_d2; ++m)
+        bound = hints[m] >= 0 && hints[m] < size()
+                    ? std::max(bound, (source_[hints[m]] - q).squaredNorm())
+                    : max_d2;
+      max_d2 = std::min(max_d2, inflate(bound));
     }
-    for (int i = 0; i < count; ++i) index[i] = order_[index[i]];
-    return count;
+    if (nodes_.empty() || k <= 0) return 0;
+    NearestK visit{max_d2, k, 0, index, d2};
+    float offsets[3] = {0.0f, 0.0f, 0.0f};
+    search(0, q, 0.0f, offsets, visit);
+    for (int i = 0; i < visit.count; ++i) index[i] = order_[index[i]];
+    return visit.count;
   }
 
  private:
   static constexpr int kLeaf = 8;
+  struct Nearest1 {
+    float best_d2;
+    int best;
+    float worst() const { return best_d2; }
+    void add(float d, int p) {
+      if (d < best_d2) {
+        best_d2 = d;
+        best = p;
+      }
+    }
+  };
+  struct NearestK {
+    float max_d2;
+    int k, count;
+    int* index;
+    float* d2;
+    float worst() const { return count < k ? max_d2 : d2[count - 1]; }
+    void add(float d, int p) {
+      if (d >= worst()) return;
+      int slot = count < k ? count++ : k - 1;  // insertion sort into the k best
+      while (slot > 0 && d2[slot - 1] > d) {
+        d2[slot] = d2[slot - 1];
+        index[slot] = index[slot - 1];
+        --slot;
+      }
+      d2[slot] = d;
+      index[slot] = p;
+    }
+  };
+
+  // Depth first, near child first. `reach` is the squared distance from q to the node's cell as
+  // the sum of the per-axis offsets beyond the splits crossed so far (offsets[dim]); a far child
+  // is entered only when its cell can hold a point closer than the current worst.
+  template <class Visit>
+  void search(int id, const Eigen::Vector3f& q, float reach, float* offsets, Visit& visit) const {
+    const Node& node = nodes_[id];
+    if (node.dim < 0) {
+      for (int p = node.begin; p < node.end; ++p) visit.add((sorted_[p] - q).squaredNorm(), p);
+      return;
+    }
+    const float diff = q[node.dim] - node.split;
+    search(diff <= 0 ? node.left : node.right, q, reach, offsets, visit);
+    const float saved = offsets[node.dim];
+    const float far_reach = reach - saved + diff * diff;
+    if (far_reach <= visit.worst()) {
+      offsets[node.dim] = diff * diff;
+      search(diff <= 0 ? node.right : node.left, q, far_reach, offsets, visit);
+      offsets[node.dim] = saved;
+    }
+  }
+  // A hint's squared distance, made a little larger so that rounding never excludes the hint
+  // itself or a point at the same distance.
+  static float inflate(float d2) { return d2 * (1.0f + 1e-5f) + 1e-30f; }
   struct Node {
     int dim = -1;  // -1: leaf holding sorted_[begin, end)
     float split = 0.0f;
