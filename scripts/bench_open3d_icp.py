@@ -65,6 +65,9 @@ def main(folder):
     print("\nsuccess (rot < 0.5°, transl < 0.5%%): Open3D %d/%d, dresskit %d/%d" % (ok_o, len(out), ok_d, len(out)))
     print("median rotation error ratio dresskit/Open3D: %.2f; median time ratio dresskit/Open3D: %.2f"
           % (med([o[5] / max(o[2], 1e-9) for o in out]), med([o[7] / o[4] for o in out])))
+    total_o, total_d = sum(o[4] for o in out), sum(o[7] for o in out)
+    print("total time over the %d pairs: Open3D %.0f ms, dresskit %.0f ms (ratio %.2f)"
+          % (len(out), total_o * 1e3, total_d * 1e3, total_d / total_o))
 
 
 if __name__ == "__main__":

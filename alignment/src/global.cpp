@@ -158,6 +158,10 @@ GlobalResult global_align(const PointSet& source, const PointSet& target,
   brief.with_scale = options.with_scale;
   brief.max_source_points = 0;
   if (brief.correspondence_distances.size() > 2) brief.correspondence_distances.resize(2);
+  // Candidates only have to be ranked: plain hard-correspondence stages at the thresholds they
+  // had before the soft stage existed; the winner gets the full refinement below.
+  brief.soft_neighbours = 0;
+  brief.coarse_epsilon_factor = 1.0;
   const PointLocator locator(target.V);
 
   GlobalResult out;

@@ -1,11 +1,12 @@
 #include "dresskit/alignment/part_matching.h"
-#include "dresskit/segmentation/metrics.h"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <set>
+
+#include "dresskit/segmentation/metrics.h"
 
 namespace dresskit {
 

@@ -50,8 +50,21 @@ struct IcpOptions {
   /// At most this many source points drive ICP and its fitness and RMSE (a fixed-seed random
   /// subset); 0 = all. More points average the noise down but cost time.
   int max_source_points = 2500;
+  /// The coarse stages (every distance of the schedule above the finest) stop at thresholds this
+  /// many times looser than the ones above: they only have to reach the basin of the finest stage.
+  /// With a soft stage, the finest hard stage is loose too, and the soft stage stops at the
+  /// thresholds above.
+  double coarse_epsilon_factor = 10.0;
   /// Inlier threshold for the reported fitness and RMSE [fraction of the target's diagonal].
   double inlier_distance = 0.02;
+  /// Final soft-assignment stage after the schedule (EM against a mixture of flattened Gaussians
+  /// on the target points, docs/alignment.md): this many nearest target points share each
+  /// source point by their likelihood; 0 = no soft stage (plain hard-correspondence ICP).
+  int soft_neighbours = 8;
+  /// Sideways spread tau of a target point's Gaussian in that stage [multiple of the median
+  /// target point spacing]; the spread along the normal is the noise, measured from the residuals
+  /// of the last hard stage.
+  double soft_tangential = 2.0;
 };
 
 /// What one registration did.

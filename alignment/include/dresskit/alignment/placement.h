@@ -13,7 +13,15 @@ namespace dresskit {
 
 struct PlacementOptions {
   MatchingOptions matching;
-  IcpOptions part_icp;  ///< per-part refinement (point-to-plane by default)
+  /// Per-part refinement: point-to-plane with hard correspondences only. The soft stage models the
+  /// source as a noisy sample of the target's surface; a garment part stands off its body part by
+  /// the ease instead, and with the soft stage the casualsuit → child placement was further from
+  /// the reference (docs/alignment.md).
+  IcpOptions part_icp = [] {
+    IcpOptions o;
+    o.soft_neighbours = 0;
+    return o;
+  }();
   /// Per-part similarity instead of rigid ICP. Off: the global similarity already carries the size
   /// ratio, and on the casualsuit → child case rigid parts are closer to the reference
   /// (docs/alignment.md).
