@@ -10,6 +10,7 @@
 #include "dresskit/cloth/geometry.h"
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/triangle_mesh.h"
 
 namespace dresskit {
 namespace {
@@ -51,19 +52,7 @@ int layer_count(const ClothModel& m) { return m.layer.size() ? m.layer.maxCoeff(
 }  // namespace
 
 Eigen::MatrixX3d rest_vertex_normals(const ClothModel& m) {
-  Eigen::MatrixX3d n = Eigen::MatrixX3d::Zero(m.rest_positions.rows(), 3);
-  for (Eigen::Index f = 0; f < m.faces.rows(); ++f) {
-    const Eigen::Vector3d a = m.rest_positions.row(m.faces(f, 0)),
-                          b = m.rest_positions.row(m.faces(f, 1)),
-                          c = m.rest_positions.row(m.faces(f, 2));
-    const Eigen::Vector3d area_normal = (b - a).cross(c - a);  // twice the area, along the normal
-    for (int k = 0; k < 3; ++k) n.row(m.faces(f, k)) += area_normal.transpose();
-  }
-  for (Eigen::Index v = 0; v < n.rows(); ++v) {
-    const double len = n.row(v).norm();
-    if (len > 0.0) n.row(v) /= len;
-  }
-  return n;
+  return vertex_normals(m.rest_positions, m.faces);
 }
 
 ClothModel make_double_layer(const ClothModel& single, const LayerThickness& t) {
@@ -322,19 +311,6 @@ double LayerContacts::height_below(int p, const ClothModel& m, const Eigen::Matr
 }
 
 namespace {
-
-/// Area-weighted vertex normals of the faces F at x (rows of particles without faces stay zero).
-Eigen::MatrixX3d vertex_normals(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F) {
-  Eigen::MatrixX3d n = Eigen::MatrixX3d::Zero(x.rows(), 3);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    const Eigen::RowVector3d a = x.row(F(f, 0)), b = x.row(F(f, 1)), c = x.row(F(f, 2));
-    const Eigen::RowVector3d area_normal = (b - a).cross(c - a);
-    for (int k = 0; k < 3; ++k) n.row(F(f, k)) += area_normal;
-  }
-  for (Eigen::Index i = 0; i < n.rows(); ++i)
-    if (n.row(i).norm() > 0.0) n.row(i).normalize();
-  return n;
-}
 
 /// For each particle of layer l, its side of the layer beneath: the signed distance from its
 /// nearest point q on that layer along the layer's normal interpolated at q, or NaN when q lies on
