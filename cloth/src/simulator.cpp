@@ -425,13 +425,14 @@ Eigen::Vector3d ClothSimulator::wind_at(double t) const {
 // else reduced by μ × that speed (kinetic). The pass also records the particles in a penalty zone.
 // Moves particle i out to the margin along the collider's normal, again from where that lands (up to
 // four times: one push along a sharp feature's normal can fall short).
-void ClothSimulator::push_out(const Collider& c, double margin, int i) {
+double ClothSimulator::push_out(const Collider& c, double margin, int i) {
+  Eigen::Vector3d n;
   for (int it = 0; it < 4; ++it) {
-    Eigen::Vector3d n;
     const double d = c.distance(row(x_, i), &n);
-    if (d >= margin) return;
+    if (d >= margin) return d;
     x_.row(i) += (margin - d) * n.transpose();
   }
+  return c.distance(row(x_, i), &n);
 }
 
 void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
@@ -476,8 +477,7 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
         // Curved or concave surfaces: still inside the margin after that, out along the local normal;
         // the entry point itself only if that leaves it inside the collider (in a crease narrower than
         // the margin) — the entry point stops the particle sliding, so it is the last resort.
-        push_out(c, margin, i);
-        if (c.distance(row(x_, i), &unused) < 0.0) x_.row(i) = entry.transpose();
+        if (push_out(c, margin, i) < 0.0) x_.row(i) = entry.transpose();
       } else if (d0 >= 0.0) {  // started within the margin: back to it along the nearest normal
         push_out(c, margin, i);
       } else {

@@ -196,7 +196,8 @@ class ClothSimulator {
                                const Eigen::MatrixX3d& v0) const;
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
-  void push_out(const Collider& c, double margin, int i);
+  /// Returns the particle's distance from the collider where it ends [m].
+  double push_out(const Collider& c, double margin, int i);
   void keep_layer_order(StepResult& r);
   /// Sews the stitches that have come within the tolerance and holds the sewn ones closed; returns
   /// the widest gap of a sewn stitch before it was closed [m].
