@@ -78,6 +78,7 @@ int main(int argc, char** argv) {
                                      TimeScheme::tr_bdf2};
   std::vector<int> dts = {30, 60, 120, 240, 480}, iteration_counts = {3, 5, 10, 20, 40};
   std::vector<int> histories = {0};
+  std::vector<int> adaptive_weights = {0};
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0)
       quick = true;
@@ -94,6 +95,8 @@ int main(int argc, char** argv) {
       dts = parse_list<int>(argv[++a]);
     else if (std::strcmp(argv[a], "--iterations") == 0 && a + 1 < argc)
       iteration_counts = parse_list<int>(argv[++a]);
+    else if (std::strcmp(argv[a], "--adaptive-weights") == 0 && a + 1 < argc)
+      adaptive_weights = parse_list<int>(argv[++a]);
     else if (std::strcmp(argv[a], "--lbfgs") == 0 && a + 1 < argc)
       histories = parse_list<int>(argv[++a]);
 
@@ -142,6 +145,7 @@ int main(int argc, char** argv) {
       name += "-" + to_string(o.time_scheme);
     if (o.integrator == Integrator::projective && o.projective_lbfgs_history > 0)
       name += "-lbfgs" + std::to_string(o.projective_lbfgs_history);
+    if (o.integrator == Integrator::projective && o.projective_adaptive_weights) name += "-aw";
 
     if (o.integrator == Integrator::projective && !o.projective_single_precision) name += "-double";
     if (!only.empty() && name.rfind(only, 0) != 0) return;
@@ -186,29 +190,31 @@ int main(int argc, char** argv) {
     std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, o.cg_tolerance);
     record(o, label);
   }
-  for (int history : histories) {
-    for (TimeScheme scheme : schemes) {
-      for (int inv : dts) {
-        for (int iterations : iteration_counts) {
-          SimulationOptions o = base;
-          o.integrator = Integrator::projective;
-          o.time_scheme = scheme;
-          o.dt = 1.0 / inv;
-          o.projective_iterations = iterations;
-          o.projective_lbfgs_history = history;
-          o.newton_tolerance = 1e-7;
-          char label[64];
-          std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
-          record(o, label);
-          if (scheme == TimeScheme::backward_euler && inv == 60 &&
-              history == 0) {  // the double-precision solve, for comparison
-            o.projective_single_precision = false;
+  for (int adaptive : adaptive_weights)
+    for (int history : histories) {
+      for (TimeScheme scheme : schemes) {
+        for (int inv : dts) {
+          for (int iterations : iteration_counts) {
+            SimulationOptions o = base;
+            o.integrator = Integrator::projective;
+            o.time_scheme = scheme;
+            o.dt = 1.0 / inv;
+            o.projective_iterations = iterations;
+            o.projective_lbfgs_history = history;
+            o.projective_adaptive_weights = adaptive != 0;
+            o.newton_tolerance = 1e-7;
+            char label[64];
+            std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
             record(o, label);
+            if (scheme == TimeScheme::backward_euler && inv == 60 && history == 0 &&
+                adaptive == 0) {  // the double-precision solve, for comparison
+              o.projective_single_precision = false;
+              record(o, label);
+            }
           }
         }
       }
     }
-  }
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
 }

@@ -69,6 +69,15 @@ inline double law_k(const LocalSpring& q, double strain) {
          q.slope * std::max(strain - kKneeStrain, 0.0);
 }
 
+/// The law's tangent stiffness dt/dL = k(ε) + k′(ε) ε (k0 in compression).
+inline double law_tangent(const LocalSpring& q, double strain) {
+  if (strain <= 0.0) return q.k0;
+  const double u = strain * (3.0 / kKneeStrain);
+  const double dk =
+      u >= 3.0 ? q.slope : q.rise * (1.0 / 9.0) * (2.0 * std::floor(u) + 1.0) * (3.0 / kKneeStrain);
+  return law_k(q, strain) + dk * strain;
+}
+
 /// The law's energy L0² ∫₀^ε k(s) s ds, exact per segment: k0 ε²/2, plus the ramp rise/9 q(u)
 /// (q the piecewise-linear interpolant of u² at the knots u = 0…3, u = 3s/ε_knee) giving
 /// rise/9 (ε_knee/3)² ∫₀^U q(u) u du, plus beyond the knee the ramp's full rise, rise ∫ s ds, and
@@ -94,9 +103,24 @@ inline double law_energy(const LocalSpring& q, double strain) {
 }
 }  // namespace
 
+/// Spring k's constants with the weight w.
+LocalSpring local_spring(const SpringSet& s, int k, double w) {
+  const double rise = std::max(s.k_knee[k] - s.k_rest[k], 0.0);
+  return {s.i[k],
+          s.j[k],
+          s.rest_length[k],
+          1.0 / s.rest_length[k],
+          s.k_rest[k],
+          rise,
+          std::max(2.0 * rise, s.k_rest[k] + rise) / kKneeStrain,
+          w,
+          s.type[k] == SpringType::bending ? w : 0.0};
+}
+
 struct ClothSimulator::Projective {
   double h = 0.0;  ///< the step in the matrix: dt, or 2 dt / 3 for BDF2
   bool single_precision = true;
+  bool adaptive = false;  ///< weights from the springs' strains (projective_adaptive_weights)
   std::vector<bool> pinned;
   Eigen::VectorXd inertia;                         ///< m/h² + c m/h per particle
   Eigen::SparseMatrix<double, Eigen::RowMajor> A;  ///< the global matrix (pinned rows: identity)
@@ -134,7 +158,7 @@ std::string to_string(TimeScheme scheme) {
 
 // The factorisation for the step h in the matrix: the current one, the spare (BDF2 keeps backward
 // Euler's start-up matrix there), or a new one.
-void ClothSimulator::prepare_projective(double h) {
+void ClothSimulator::prepare_projective(double h, const std::vector<double>* weights) {
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
   const double c = options_.air_damping;
@@ -144,13 +168,20 @@ void ClothSimulator::prepare_projective(double h) {
     current->spare = projective_;
     projective_ = current;
   }
-  if (projective_ && projective_->h == h && projective_->pinned == pinned_ &&
+  if (!weights && projective_ && projective_->h == h && projective_->pinned == pinned_ &&
       projective_->single_precision == options_.projective_single_precision)
     return;
+  // Adaptive weights carry over to a new factorisation (a new step size or pin set).
+  std::vector<double> kept;
+  if (!weights && projective_ && projective_->adaptive) {
+    for (const LocalSpring& q : projective_->springs) kept.push_back(q.w);
+    weights = &kept;
+  }
   auto p = std::make_shared<Projective>();
   p->h = h;
   p->pinned = pinned_;
   p->single_precision = options_.projective_single_precision;
+  p->adaptive = weights != nullptr;
   p->inertia = model_.mass * (1.0 / (h * h) + c / h);
   std::vector<Eigen::Triplet<double>> a, b;
   a.reserve(static_cast<std::size_t>(4 * s.size() + n));
@@ -162,19 +193,10 @@ void ClothSimulator::prepare_projective(double h) {
   p->springs.resize(static_cast<std::size_t>(s.size()));
   for (int k = 0; k < s.size(); ++k) {
     const int i = s.i[k], j = s.j[k];
-    const double w = projective_weight(s.k_rest[k], s.k_knee[k]);
-    const double rise = std::max(s.k_knee[k] - s.k_rest[k], 0.0);
+    const double w = weights ? (*weights)[k] : projective_weight(s.k_rest[k], s.k_knee[k]);
     const bool lagged =
         s.type[k] == SpringType::bending;  // off the matrix: see LocalSpring::lagged_w
-    p->springs[k] = {i,
-                     j,
-                     s.rest_length[k],
-                     1.0 / s.rest_length[k],
-                     s.k_rest[k],
-                     rise,
-                     std::max(2.0 * rise, s.k_rest[k] + rise) / kKneeStrain,
-                     w,
-                     lagged ? w : 0.0};
+    p->springs[k] = local_spring(s, k, w);
     couple(i, i, w);
     couple(j, j, w);
     if (lagged) continue;
@@ -197,7 +219,7 @@ void ClothSimulator::prepare_projective(double h) {
   p->to_pinned.resize(n, n);
   p->to_pinned.setFromTriplets(b.begin(), b.end());
   p->ok = p->single_precision ? p->single.compute(A) : p->full.compute(A);
-  if (projective_ && projective_->h != h) {
+  if (projective_ && projective_->h != h && !p->adaptive) {
     p->spare = projective_;
     p->spare->spare.reset();
   }
@@ -482,7 +504,48 @@ void ClothSimulator::step_projective(StepResult& r) {
                    : scheme == TimeScheme::midpoint ? 0.5 * dt
                    : scheme == TimeScheme::tr_bdf2  ? tr_h
                                                     : dt;
-  prepare_projective(h);
+  if (options_.projective_adaptive_weights) {
+    // Each stretch spring's weight is the law's tangent stiffness a little beyond its strain (the
+    // iterations contract while the spring's stiffness stays below twice its weight): far below
+    // the one weight for all (the tangent just below the knee), which is 10–100 times the
+    // stiffness of a lightly stretched cloth and makes its iterations crawl. A spring whose
+    // stiffness passes 1.5 × its weight raises all weights to their springs' current strains
+    // (never lowering one) and the matrix is factorised again. Measured on the error bench:
+    // headroom 0.05 and trigger 1.5 (5 refactorisations in 1 s); weights at the tangent itself
+    // (headroom 0) or below it (0.7 × tangent) blew up with few iterations.
+    const double headroom = 0.05, trigger = 1.5;
+    const SpringSet& s = model_.springs;
+    const double* x = x_.data();
+    auto strain_of = [&](const LocalSpring& q) {
+      const double dx = x[q.j] - x[q.i], dy = x[q.j + n] - x[q.i + n],
+                   dz = x[q.j + 2 * n] - x[q.i + 2 * n];
+      return std::sqrt(dx * dx + dy * dy + dz * dz) * q.inv_L0 - 1.0;
+    };
+    const bool have = projective_ && projective_->adaptive;
+    bool raise = !have;
+    if (have)  // one pass: has a stretch spring stiffened past its weight?
+      for (const LocalSpring& q : projective_->springs)
+        if (q.lagged_w == 0.0 && law_tangent(q, strain_of(q)) > trigger * q.w) {
+          raise = true;
+          break;
+        }
+    std::vector<double> weights;
+    if (raise) {
+      weights.resize(static_cast<std::size_t>(s.size()));
+      for (int k = 0; k < s.size(); ++k) {
+        const LocalSpring q = have ? projective_->springs[k] : local_spring(s, k, 0.0);
+        if (s.type[k] == SpringType::bending) {  // linear: its weight is its stiffness
+          weights[k] = s.k_rest[k];
+          continue;
+        }
+        const double wanted = law_tangent(q, strain_of(q) + headroom);
+        weights[k] = have ? std::max(q.w, wanted) : wanted;
+      }
+    }
+    prepare_projective(h, raise ? &weights : nullptr);
+  } else {
+    prepare_projective(h);
+  }
   if (!projective_->ok) {
     r.ok = false;
     r.failure = "projective dynamics: the global matrix could not be factorised";

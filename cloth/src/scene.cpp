@@ -509,7 +509,8 @@ ClothScene load_cloth_scene(const std::string& path) {
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
              "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard",
              "projective_iterations", "time_scheme", "projective_collisions", "self_collision", "cloth_thickness",
-             "cloth_friction", "seam_tolerance", "weld_seams", "projective_lbfgs_history"});
+             "cloth_friction", "seam_tolerance", "weld_seams", "projective_lbfgs_history",
+             "projective_adaptive_weights"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -554,6 +555,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.projective_lbfgs_history =
         static_cast<int>(s.number("projective_lbfgs_history", o.projective_lbfgs_history, 0, 100));
     o.projective_collisions = s.boolean("projective_collisions", o.projective_collisions);
+    o.projective_adaptive_weights = s.boolean("projective_adaptive_weights", o.projective_adaptive_weights);
   }
   check_options(scene.simulation);
   return scene;

@@ -86,6 +86,10 @@ struct SimulationOptions {
   /// Projective dynamics: 0 = local/global iterations; m > 0 = L-BFGS with the last m pairs and the
   /// projective matrix as initial Hessian, with a line search (Liu et al. 2017; docs/cloth.md).
   int projective_lbfgs_history = 0;
+  /// Projective dynamics: each spring's weight follows its strain (the law's tangent stiffness a
+  /// little beyond it, raised and refactorised when a spring stiffens past it) instead of one
+  /// weight per spring from the law's knee (docs/cloth.md).
+  bool projective_adaptive_weights = false;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
   /// Adaptive time step: a failed step, or one whose largest strain changes by more than
   /// max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm steps
@@ -263,7 +267,7 @@ class ClothSimulator {
     double t_prev = -1.0, t_start = -1.0;
   } history_;
   /// Projective dynamics (projective.cpp): the factorisation for step h, one minimisation.
-  void prepare_projective(double h);
+  void prepare_projective(double h, const std::vector<double>* weights = nullptr);
   int projective_solve(const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
                        const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0,
                        Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X,
