@@ -26,6 +26,8 @@
 // a collider's margin are pushed out to it along the normal, so the springs settle around the
 // contacts within the step; the contacts of the last pass then lose their inward speed and get
 // friction (as collide()).
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "dresskit/cloth/seams.h"
@@ -78,6 +80,45 @@ inline double law_tangent(const LocalSpring& q, double strain) {
   return law_k(q, strain) + dk * strain;
 }
 
+/// The local step for a list of springs: adds each spring's w d (and, for lagged springs, its
+/// couplings at the current iterate) to the right-hand side R. Lagged (bending) springs are linear
+/// (k0 = k_knee), so their law is k0; the stretch springs' loop has no lagged terms. Check: also
+/// returns the largest ratio of a spring's tangent stiffness to its weight.
+template <bool Lagged, bool Check = false>
+double local_step(const std::vector<LocalSpring>& springs, const double* x, const double* rest,
+                  int n, double beyond, double* R) {
+  double worst = 0.0;
+  for (const LocalSpring& q : springs) {
+    const int i = q.i, j = q.j;
+    double e[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
+    double L = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    if (L < 1e-12) {  // no direction: take the rest direction
+      for (int a = 0; a < 3; ++a) e[a] = rest[j + a * n] - rest[i + a * n];
+      L = 0.0;
+    }
+    // 1 / |e| first: the division then runs alongside the law below instead of after it.
+    const double inv_norm =
+        1.0 / (L > 0.0 ? L : std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
+    const double strain = L * q.inv_L0 - 1.0;
+    const double k = Lagged ? q.k0 : law_k(q, strain);
+    if (Check) worst = std::max(worst, law_tangent(q, strain) / q.w);
+    const double stretch = L > beyond * q.L0 ? L * q.inv_L0 : 1.0;  // dynamic stiffness
+    const double t = k * strain * q.L0 * stretch;
+    // w d: the quadratic's pull w (L − ℓ) along e with ℓ = max(L − t/w, 0).
+    const double scale = std::max(q.w * L - t, 0.0) * inv_norm;
+    for (int a = 0; a < 3; ++a) {
+      if (Lagged) {
+        R[3 * j + a] += scale * e[a] + q.lagged_w * x[3 * i + a];
+        R[3 * i + a] += q.lagged_w * x[3 * j + a] - scale * e[a];
+      } else {
+        R[3 * j + a] += scale * e[a];
+        R[3 * i + a] -= scale * e[a];
+      }
+    }
+  }
+  return worst;
+}
+
 /// The law's energy L0² ∫₀^ε k(s) s ds, exact per segment: k0 ε²/2, plus the ramp rise/9 q(u)
 /// (q the piecewise-linear interpolant of u² at the knots u = 0…3, u = 3s/ε_knee) giving
 /// rise/9 (ε_knee/3)² ∫₀^U q(u) u du, plus beyond the knee the ramp's full rise, rise ∫ s ds, and
@@ -126,6 +167,20 @@ struct ClothSimulator::Projective {
   Eigen::SparseMatrix<double, Eigen::RowMajor> A;  ///< the global matrix (pinned rows: identity)
   Eigen::SparseMatrix<double> to_pinned;  ///< free-row × pinned-column couplings, moved to the rhs
   std::vector<LocalSpring> springs;
+  std::vector<LocalSpring> stretch, bend;  ///< the same, split for the local step's two loops
+  /// Work arrays of a step, kept between steps: each is 6,561 × 3 doubles on the error bench's
+  /// cloth, above malloc's mmap threshold, so allocating them anew every step cost page faults
+  /// (5.6 % of a run's time in perf).
+  mutable RowX3 fixed, rhs, previous, X;
+  /// Adaptive weights: the largest tangent stiffness / weight of a stretch spring at the start of
+  /// an iteration since the weights were set.
+  mutable double worst = 0.0;
+  /// Adaptive weights: A column-major (factorised; its arrays are those of the symmetric A when
+  /// same_layout) and each spring's entries ii, jj, ij, ji in it and in to_pinned (−1: none).
+  Eigen::SparseMatrix<double> Acol;
+  bool same_layout = false;
+  std::vector<std::array<int, 4>> a_offset, b_offset;
+  mutable Eigen::MatrixX3d x0, v0, base, vbase, target, y;
   std::vector<int> pinned_list;
   detail::InterleavedCholesky<float> single;
   detail::InterleavedCholesky<double> full;
@@ -171,6 +226,38 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   if (!weights && projective_ && projective_->h == h && projective_->pinned == pinned_ &&
       projective_->single_precision == options_.projective_single_precision)
     return;
+  // New adaptive weights for the same step and pins: the matrices' values change in place through
+  // each spring's entries, and the factor keeps its ordering and symbolic analysis (building the
+  // matrices anew from triplets took as long as the numeric factorisation, ~4.5 ms on the error
+  // bench's cloth).
+  if (weights && projective_ && projective_->adaptive && projective_->ok && projective_->h == h &&
+      projective_->pinned == pinned_ &&
+      projective_->single_precision == options_.projective_single_precision &&
+      projective_->same_layout) {
+    Projective& P = *projective_;
+    double* a = P.Acol.valuePtr();
+    double* b = P.to_pinned.valuePtr();
+    for (int k = 0; k < s.size(); ++k) {
+      LocalSpring& q = P.springs[static_cast<std::size_t>(k)];
+      const double dw = (*weights)[static_cast<std::size_t>(k)] - q.w;
+      if (dw == 0.0) continue;
+      const std::array<int, 4>& ao = P.a_offset[static_cast<std::size_t>(k)];
+      const std::array<int, 4>& bo = P.b_offset[static_cast<std::size_t>(k)];
+      for (int e = 0; e < 4; ++e) {
+        const double sign = e < 2 ? 1.0 : -1.0;
+        if (ao[e] >= 0) a[ao[e]] += sign * dw;
+        if (bo[e] >= 0) b[bo[e]] += sign * dw;
+      }
+      q.w += dw;
+      if (q.lagged_w > 0.0) q.lagged_w = q.w;
+    }
+    std::copy(a, a + P.Acol.nonZeros(), P.A.valuePtr());  // symmetric: the same arrays
+    P.stretch.clear(), P.bend.clear();
+    for (const LocalSpring& q : P.springs) (q.lagged_w > 0.0 ? P.bend : P.stretch).push_back(q);
+    P.worst = 0.0;
+    P.ok = P.single_precision ? P.single.refactor(P.Acol) : P.full.refactor(P.Acol);
+    return;
+  }
   // Adaptive weights carry over to a new factorisation (a new step size or pin set).
   std::vector<double> kept;
   if (!weights && projective_ && projective_->adaptive) {
@@ -211,6 +298,7 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
     for (int p = 0; p < 3; ++p)
       for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], model_.seams.stiffness[k] * sw[p] * sw[q]);
   }
+  for (const LocalSpring& q : p->springs) (q.lagged_w > 0.0 ? p->bend : p->stretch).push_back(q);
   for (int v = 0; v < n; ++v)
     if (pinned_[v]) p->pinned_list.push_back(v);
   Eigen::SparseMatrix<double> A(n, n);
@@ -218,7 +306,44 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   p->A = A;
   p->to_pinned.resize(n, n);
   p->to_pinned.setFromTriplets(b.begin(), b.end());
-  p->ok = p->single_precision ? p->single.compute(A) : p->full.compute(A);
+  if (p->adaptive) {  // where each spring's weight enters the matrices (for new weights)
+    p->Acol = A;
+    p->same_layout =
+        std::equal(A.outerIndexPtr(), A.outerIndexPtr() + n + 1, p->A.outerIndexPtr()) &&
+        std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), p->A.innerIndexPtr());
+    auto offset = [](const Eigen::SparseMatrix<double>& M, int row, int col) {
+      const int* inner = M.innerIndexPtr();
+      const int *first = inner + M.outerIndexPtr()[col], *last = inner + M.outerIndexPtr()[col + 1];
+      const int* at = std::lower_bound(first, last, row);
+      return at != last && *at == row ? static_cast<int>(at - inner) : -1;
+    };
+    p->a_offset.resize(static_cast<std::size_t>(s.size()));
+    p->b_offset.resize(static_cast<std::size_t>(s.size()));
+    for (int k = 0; k < s.size(); ++k) {
+      const int i = s.i[k], j = s.j[k];
+      const bool lagged = s.type[k] == SpringType::bending;
+      const int rows[4] = {i, j, i, j}, cols[4] = {i, j, j, i};
+      for (int e = 0; e < 4; ++e) {
+        const bool in = !pinned_[rows[e]] && !(lagged && e >= 2);
+        const bool to_pin = in && pinned_[cols[e]];
+        p->a_offset[static_cast<std::size_t>(k)][e] =
+            in && !to_pin ? offset(A, rows[e], cols[e]) : -1;
+        p->b_offset[static_cast<std::size_t>(k)][e] =
+            to_pin ? offset(p->to_pinned, rows[e], cols[e]) : -1;
+      }
+    }
+  }
+  // Adaptive weights keep no spare: a refactorisation for new weights (or a new step) keeps the
+  // old factor's ordering and symbolic analysis (same sparsity while the pins are the same).
+  const bool reuse = p->adaptive && projective_ && projective_->ok &&
+                     projective_->pinned == pinned_ &&
+                     projective_->single_precision == p->single_precision;
+  if (reuse) {
+    p->single = std::move(projective_->single);
+    p->full = std::move(projective_->full);
+  }
+  p->ok = p->single_precision ? (reuse ? p->single.refactor(A) : p->single.compute(A))
+                              : (reuse ? p->full.refactor(A) : p->full.compute(A));
   if (projective_ && projective_->h != h && !p->adaptive) {
     p->spare = projective_;
     p->spare->spare.reset();
@@ -239,19 +364,28 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
   const Projective& P = *projective_;
   const double h = P.h, c = options_.air_damping;
   const int n = static_cast<int>(x_.rows());
-  RowX3 fixed(n, 3);
-  for (int v = 0; v < n; ++v) {
-    const double m = model_.mass(v);
-    fixed.row(v) = (m / (h * h)) * target.row(v) +
-                   (c * m / h) * (air_base.row(v) + h * wind.transpose()) +
-                   m * options_.gravity.transpose();
+  RowX3& fixed = P.fixed;
+  fixed.resize(n, 3);
+  {
+    double* F = fixed.data();
+    const double* T = target.data();
+    const double* B = air_base.data();
+    for (int d = 0; d < 3; ++d) {
+      const double air = h * wind[d], g = options_.gravity[d];
+      for (int v = 0; v < n; ++v) {
+        const double m = model_.mass(v);
+        F[3 * v + d] = (m / (h * h)) * T[v + d * n] + (c * m / h) * (B[v + d * n] + air) + m * g;
+      }
+    }
+    // Pinned particles stay where they are: their couplings move to the right-hand side.
+    for (int col = 0; col < P.to_pinned.outerSize(); ++col)
+      for (Eigen::SparseMatrix<double>::InnerIterator it(P.to_pinned, col); it; ++it)
+        for (int d = 0; d < 3; ++d) F[3 * it.row() + d] -= it.value() * x0(col, d);
   }
-  fixed -= P.to_pinned * x0;  // pinned particles stay where they are
-  for (int v = 0; v < n; ++v)
-    if (pinned_[v]) fixed.row(v) = x0.row(v), X.row(v) = x0.row(v);
+  for (int v : P.pinned_list) fixed.row(v) = x0.row(v), X.row(v) = x0.row(v);
 
   if (options_.projective_lbfgs_history > 0) return projective_lbfgs(target, air_base, wind, x0, X);
-  RowX3 rhs(n, 3), previous(n, 3);
+  RowX3 &rhs = P.rhs, &previous = P.previous;
   const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
   const double* rest = model_.rest_positions.data();
   int iterations = 0;
@@ -259,28 +393,11 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     rhs = fixed;
     double* R = rhs.data();
     const double* x = X.data();
-    for (const LocalSpring& q : P.springs) {  // local step: each spring's target
-      const int i = q.i, j = q.j;
-      double e[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
-      double L = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-      if (L < 1e-12) {  // no direction: take the rest direction
-        for (int a = 0; a < 3; ++a) e[a] = rest[j + a * n] - rest[i + a * n];
-        L = 0.0;
-      }
-      // 1 / |e| first: the division then runs alongside the law below instead of after it.
-      const double inv_norm =
-          1.0 / (L > 0.0 ? L : std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
-      const double strain = L * q.inv_L0 - 1.0;
-      const double k = law_k(q, strain);
-      const double stretch = L > beyond * q.L0 ? L * q.inv_L0 : 1.0;  // dynamic stiffness
-      const double t = k * strain * q.L0 * stretch;
-      // w d: the quadratic's pull w (L − ℓ) along e with ℓ = max(L − t/w, 0).
-      const double scale = std::max(q.w * L - t, 0.0) * inv_norm;
-      for (int a = 0; a < 3; ++a) {
-        R[3 * j + a] += scale * e[a] + q.lagged_w * x[3 * i + a];
-        R[3 * i + a] += q.lagged_w * x[3 * j + a] - scale * e[a];
-      }
-    }
+    if (it == 0 && P.adaptive)  // how far the start of the iterations has outgrown the weights
+      P.worst = std::max(P.worst, local_step<false, true>(P.stretch, x, rest, n, beyond, R));
+    else
+      local_step<false>(P.stretch, x, rest, n, beyond, R);  // each spring's target
+    local_step<true>(P.bend, x, rest, n, beyond, R);
     // Stitches: k d spread by their weights (d: the soft-threshold target of the current gap).
     int idx[3];
     double sw[3];
@@ -330,7 +447,14 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
         }
       }
     }
-    const double moved = (X - previous).rowwise().norm().maxCoeff();
+    double moved2 = 0.0;
+    for (int v = 0; v < n; ++v) {
+      const double* a = X.data() + 3 * v;
+      const double* b = previous.data() + 3 * v;
+      moved2 = std::max(moved2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                    (a[2] - b[2]) * (a[2] - b[2]));
+    }
+    const double moved = std::sqrt(moved2);
     iterations = it + 1;
     if (moved < options_.newton_tolerance) break;
   }
@@ -522,13 +646,9 @@ void ClothSimulator::step_projective(StepResult& r) {
       return std::sqrt(dx * dx + dy * dy + dz * dz) * q.inv_L0 - 1.0;
     };
     const bool have = projective_ && projective_->adaptive;
-    bool raise = !have;
-    if (have)  // one pass: has a stretch spring stiffened past its weight?
-      for (const LocalSpring& q : projective_->springs)
-        if (q.lagged_w == 0.0 && law_tangent(q, strain_of(q)) > trigger * q.w) {
-          raise = true;
-          break;
-        }
+    // Has a stretch spring stiffened past its weight (checked by the first local step of every
+    // minimisation, at the point the iterations start from)?
+    const bool raise = !have || projective_->worst > trigger;
     std::vector<double> weights;
     if (raise) {
       weights.resize(static_cast<std::size_t>(s.size()));
@@ -551,20 +671,24 @@ void ClothSimulator::step_projective(StepResult& r) {
     r.failure = "projective dynamics: the global matrix could not be factorised";
     return;
   }
-  const Eigen::MatrixX3d x0 = x_, v0 = v_;
-  RowX3 X(n, 3);
+  const Projective& P = *projective_;
+  P.x0 = x_, P.v0 = v_;
+  const Eigen::MatrixX3d &x0 = P.x0, &v0 = P.v0;
+  RowX3& X = P.X;
   Contacts contacts;
-  Eigen::MatrixX3d base = x0, vbase = v0;  // x̂ and v̂ of the last stage: x_{n+1} = x̂ + h v_{n+1}
+  // x̂ and v̂ of the last stage: x_{n+1} = x̂ + h v_{n+1}
+  Eigen::MatrixX3d &base = P.base, &vbase = P.vbase, &target = P.target, &y = P.y;
+  base = x0, vbase = v0;
   if (scheme == TimeScheme::midpoint || scheme == TimeScheme::tr_bdf2) {
     // Implicit midpoint over the first stage (the whole step, or γ h of TR-BDF2): y minimises
     // backward Euler's potential of step h from (x_n, v_n); the stage ends at 2y − x_n with the
     // velocity 2 (y − x_n)/h − v_n.
     const double stage = scheme == TimeScheme::midpoint ? dt : 2.0 * h;
-    const Eigen::MatrixX3d target = x0 + h * v0;
+    target = x0 + h * v0;
     X = target;
     r.newton_iterations +=
         projective_solve(target, x0, wind_at(time_ + 0.5 * stage), x0, X, contacts);
-    const Eigen::MatrixX3d y = X;
+    y = X;
     base = 2.0 * y - x0;              // x at the stage's end
     vbase = 2.0 / h * (y - x0) - v0;  // v there
     if (scheme == TimeScheme::midpoint) {
@@ -583,8 +707,8 @@ void ClothSimulator::step_projective(StepResult& r) {
     vbase = (4.0 * v0 - history_.v_prev) / 3.0;
   }
   if (scheme != TimeScheme::midpoint) {
-    const Eigen::MatrixX3d target = base + h * vbase;  // the inertia target
-    X = target;                                        // start from it
+    target = base + h * vbase;  // the inertia target
+    X = target;                 // start from it
     r.newton_iterations += projective_solve(target, base, wind_at(time_ + dt), x0, X, contacts);
     x_ = X;
     v_ = (x_ - base) / h;
