@@ -9,6 +9,10 @@
 // [out.csv=out/bench/error_vs_time.csv] [--quick] [--only INTEGRATOR]
 //        [--reference FILE]  (reads the reference positions from FILE, or computes and writes them
 //        there)
+//        [--schemes a,b] [--dts 60,120] [--iterations 3,5] [--lbfgs 0,5]
+//        (projective dynamics' sweep: time schemes backward_euler, bdf2, midpoint, tr_bdf2; steps
+//        as 1/dt; iterations per step; L-BFGS history, 0 = local/global iterations; CSV
+//        integrator "projective[-scheme][-lbfgsM]")
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +20,9 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "dresskit/cloth/simulator.h"
 
@@ -31,6 +37,15 @@ struct Run {
   bool ok = true;
   std::string failure;
 };
+
+template <typename T>
+std::vector<T> parse_list(const char* text) {
+  std::vector<T> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) out.push_back(static_cast<T>(std::stod(item)));
+  return out;
+}
 
 Run simulate(const ClothModel& model, const std::vector<int>& pins, SimulationOptions o) {
   ClothSimulator sim(model, o);
@@ -59,6 +74,11 @@ int main(int argc, char** argv) {
   bool quick = false;
   std::string only;  // --only NAME: just that integrator's runs (and the reference)
   std::string reference_path;
+  std::vector<TimeScheme> schemes = {TimeScheme::backward_euler, TimeScheme::bdf2,
+                                     TimeScheme::tr_bdf2};
+  std::vector<int> dts = {30, 60, 120, 240, 480}, iteration_counts = {3, 5, 10, 20, 40};
+  std::vector<int> histories = {0};
+  std::vector<int> adaptive_weights = {0};
   for (int a = 1; a < argc; ++a) {
     if (std::strcmp(argv[a], "--quick") == 0)
       quick = true;
@@ -66,6 +86,20 @@ int main(int argc, char** argv) {
       only = argv[++a];
     else if (std::strcmp(argv[a], "--reference") == 0 && a + 1 < argc)
       reference_path = argv[++a];
+    else if (std::strcmp(argv[a], "--schemes") == 0 && a + 1 < argc) {
+      schemes.clear();
+      std::stringstream in(argv[++a]);
+      std::string item;
+      while (std::getline(in, item, ',')) schemes.push_back(parse_time_scheme(item));
+    } else if (std::strcmp(argv[a], "--dts") == 0 && a + 1 < argc)
+      dts = parse_list<int>(argv[++a]);
+    else if (std::strcmp(argv[a], "--iterations") == 0 && a + 1 < argc)
+      iteration_counts = parse_list<int>(argv[++a]);
+    else if (std::strcmp(argv[a], "--adaptive-weights") == 0 && a + 1 < argc)
+      adaptive_weights = parse_list<int>(argv[++a]);
+    else if (std::strcmp(argv[a], "--lbfgs") == 0 && a + 1 < argc)
+      histories = parse_list<int>(argv[++a]);
+
     else
       csv_path = argv[a];
   }
@@ -107,8 +141,12 @@ int main(int argc, char** argv) {
          "error,stable\n";
   auto record = [&](const SimulationOptions& o, const std::string& label) {
     std::string name = to_string(o.integrator);
-    if (o.integrator == Integrator::projective && o.time_scheme == TimeScheme::bdf2)
-      name += "-bdf2";
+    if (o.integrator == Integrator::projective && o.time_scheme != TimeScheme::backward_euler)
+      name += "-" + to_string(o.time_scheme);
+    if (o.integrator == Integrator::projective && o.projective_lbfgs_history > 0)
+      name += "-lbfgs" + std::to_string(o.projective_lbfgs_history);
+    if (o.integrator == Integrator::projective && o.projective_adaptive_weights) name += "-aw";
+
     if (o.integrator == Integrator::projective && !o.projective_single_precision) name += "-double";
     if (!only.empty() && name.rfind(only, 0) != 0) return;
     const Run r = simulate(model, pins, o);
@@ -152,26 +190,31 @@ int main(int argc, char** argv) {
     std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, o.cg_tolerance);
     record(o, label);
   }
-  for (TimeScheme scheme : {TimeScheme::backward_euler, TimeScheme::bdf2}) {
-    for (int inv : {30, 60, 120, 240, 480}) {
-      for (int iterations : {3, 5, 10, 20, 40}) {
-        SimulationOptions o = base;
-        o.integrator = Integrator::projective;
-        o.time_scheme = scheme;
-        o.dt = 1.0 / inv;
-        o.projective_iterations = iterations;
-        o.newton_tolerance = 1e-7;
-        char label[64];
-        std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
-        record(o, label);
-        if (scheme == TimeScheme::backward_euler &&
-            inv == 60) {  // the double-precision solve, for comparison
-          o.projective_single_precision = false;
-          record(o, label);
+  for (int adaptive : adaptive_weights)
+    for (int history : histories) {
+      for (TimeScheme scheme : schemes) {
+        for (int inv : dts) {
+          for (int iterations : iteration_counts) {
+            SimulationOptions o = base;
+            o.integrator = Integrator::projective;
+            o.time_scheme = scheme;
+            o.dt = 1.0 / inv;
+            o.projective_iterations = iterations;
+            o.projective_lbfgs_history = history;
+            o.projective_adaptive_weights = adaptive != 0;
+            o.newton_tolerance = 1e-7;
+            char label[64];
+            std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
+            record(o, label);
+            if (scheme == TimeScheme::backward_euler && inv == 60 && history == 0 &&
+                adaptive == 0) {  // the double-precision solve, for comparison
+              o.projective_single_precision = false;
+              record(o, label);
+            }
+          }
         }
       }
     }
-  }
   std::printf("wrote %s\n", csv_path.c_str());
   return 0;
 }

@@ -1,10 +1,12 @@
 // Stability envelope (issue 3): for each integrator, spring stiffness k (normalised by particle
 // mass, 1e1 … 1e8 N/m per kg) × time step (1/1000 … 1/24 s): a 10×10 cloth of unit-mass particles
 // pinned at two corners, without gravity, released from a random perturbation of 10 % of the
-// spacing, runs for 1 s undamped (projective dynamics with backward Euler and with BDF2,
-// "projective-bdf2"). Unstable = a step fails (NaN, strain over 100 %, solver failure) or the total
-// energy grows beyond 10× its initial value (the exact solution keeps it constant). Writes CSV to
-// the given path and prints the largest stable step per stiffness. Usage: bench_cloth_stability
+// spacing, runs for 1 s undamped (projective dynamics with backward Euler, BDF2, TR-BDF2 and the
+// implicit midpoint rule: "projective-bdf2", "projective-tr_bdf2", "projective-midpoint"; TR-BDF2
+// with adaptive weights: "projective-tr_bdf2-aw"). Unstable
+// = a step fails (NaN, strain over 100 %, solver failure) or the total energy grows beyond 10× its
+// initial value (the exact solution keeps it constant). Writes CSV to the given path and prints the
+// largest stable step per stiffness. Usage: bench_cloth_stability
 // [out.csv=out/bench/stability_envelope.csv]
 #include <cmath>
 #include <cstdio>
@@ -30,15 +32,21 @@ int main(int argc, char** argv) {
   struct Variant {
     Integrator integrator;
     TimeScheme scheme;
+    bool adaptive_weights = false;
   };
   for (const Variant variant : {Variant{Integrator::symplectic_euler, TimeScheme::backward_euler},
                                 Variant{Integrator::implicit_euler, TimeScheme::backward_euler},
                                 Variant{Integrator::newton, TimeScheme::backward_euler},
                                 Variant{Integrator::projective, TimeScheme::backward_euler},
-                                Variant{Integrator::projective, TimeScheme::bdf2}}) {
+                                Variant{Integrator::projective, TimeScheme::bdf2},
+                                Variant{Integrator::projective, TimeScheme::tr_bdf2},
+                                Variant{Integrator::projective, TimeScheme::midpoint},
+                                Variant{Integrator::projective, TimeScheme::tr_bdf2, true}}) {
     const Integrator integrator = variant.integrator;
     const std::string name =
-        to_string(integrator) + (variant.scheme == TimeScheme::bdf2 ? "-bdf2" : "");
+        to_string(integrator) +
+        (variant.scheme == TimeScheme::backward_euler ? "" : "-" + to_string(variant.scheme)) +
+        (variant.adaptive_weights ? "-aw" : "");
     std::printf("%s: largest stable step per stiffness\n", name.c_str());
     for (int e = 1; e <= 8; ++e) {
       const double k = std::pow(10.0, e);
@@ -52,6 +60,7 @@ int main(int argc, char** argv) {
         SimulationOptions o;
         o.integrator = integrator;
         o.time_scheme = variant.scheme;
+        o.projective_adaptive_weights = variant.adaptive_weights;
         o.dt = dt;
         o.cg_max_iterations = 2000;
         o.gravity.setZero();

@@ -33,7 +33,10 @@ def stability(rows, out):
         ax.set_xlabel("time step [s]")
         ax.set_ylabel("stiffness / particle mass [N/m/kg]")
         titles = {"implicit": "implicit Euler", "newton": "Newton (backward Euler)", "symplectic": "symplectic Euler",
-                  "projective": "projective dynamics", "projective-bdf2": "projective dynamics, BDF2"}
+                  "projective": "projective dynamics", "projective-bdf2": "projective dynamics, BDF2",
+                  "projective-tr_bdf2": "projective dynamics, TR-BDF2",
+                  "projective-tr_bdf2-aw": "projective, TR-BDF2, adaptive weights",
+                  "projective-midpoint": "projective dynamics, implicit midpoint"}
         ax.set_title("%s: green = stable" % titles.get(name, name))
     fig.tight_layout()
     fig.savefig(out, dpi=90)

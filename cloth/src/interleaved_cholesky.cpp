@@ -1,6 +1,7 @@
 #include "interleaved_cholesky.h"
 
 #include <Eigen/SparseCholesky>
+#include <algorithm>
 
 namespace dresskit::detail {
 
@@ -25,22 +26,61 @@ void compress(const Eigen::SparseMatrix<double, Eigen::RowMajor>& M, std::vector
 
 template <typename Scalar>
 bool InterleavedCholesky<Scalar>::compute(const Eigen::SparseMatrix<double>& A) {
-  Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>> llt(A);
-  if (llt.info() != Eigen::Success) return false;
+  llt_ = std::make_shared<
+      Eigen::SimplicialLLT<Eigen::SparseMatrix<double>, Eigen::Lower, Eigen::AMDOrdering<int>>>(A);
+  if (llt_->info() != Eigen::Success) return false;
   n_ = static_cast<int>(A.rows());
   // LLT factorises P A Pᵀ with (P v)[indices[i]] = v[i]: factor row indices[i] is the matrix's row
   // i.
   perm_.assign(static_cast<std::size_t>(n_), 0);
-  const auto& p = llt.permutationP().indices();
+  const auto& p = llt_->permutationP().indices();
   for (int i = 0; i < n_; ++i) perm_[static_cast<std::size_t>(p[i])] = i;
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> L = llt.matrixL();
-  const Eigen::SparseMatrix<double, Eigen::RowMajor> Lt = llt.matrixU();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> L = llt_->matrixL();
+  const Eigen::SparseMatrix<double, Eigen::RowMajor> Lt = llt_->matrixU();
   inv_diag_.assign(static_cast<std::size_t>(n_), 0.0);
   for (int j = 0; j < n_; ++j) inv_diag_[static_cast<std::size_t>(j)] = 1.0 / L.coeff(j, j);
   compress(L, row_start_, row_index_, row_value_);
   compress(Lt, col_start_, col_index_, col_value_);
   work_.assign(4 * static_cast<std::size_t>(n_), 0.0);
+  // For refactor: A's sparsity, and where each strictly lower entry of the column-major factor
+  // (column j, rows increasing) goes among the rows (row i, columns increasing).
+  pattern_outer_.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+  pattern_inner_.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+  const Eigen::SparseMatrix<double>& C = llt_->matrixL().nestedExpression();
+  std::vector<int> fill(row_start_.begin(), row_start_.end() - 1);
+  row_place_.clear();
+  for (int j = 0; j < n_; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(C, j); it; ++it)
+      if (it.row() != j) row_place_.push_back(fill[static_cast<std::size_t>(it.row())]++);
   return true;
+}
+
+template <typename Scalar>
+bool InterleavedCholesky<Scalar>::refactor(const Eigen::SparseMatrix<double>& A) {
+  const bool same = llt_ && A.rows() == n_ && A.isCompressed() &&
+                    static_cast<std::size_t>(A.nonZeros()) == pattern_inner_.size() &&
+                    std::equal(pattern_outer_.begin(), pattern_outer_.end(), A.outerIndexPtr()) &&
+                    std::equal(pattern_inner_.begin(), pattern_inner_.end(), A.innerIndexPtr());
+  if (!same) return compute(A);
+  llt_->factorize(A);
+  if (llt_->info() != Eigen::Success) return false;
+  return copy_values();
+}
+
+template <typename Scalar>
+bool InterleavedCholesky<Scalar>::copy_values() {
+  const Eigen::SparseMatrix<double>& C = llt_->matrixL().nestedExpression();
+  std::size_t column_entry = 0, lower = 0;
+  for (int j = 0; j < n_; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(C, j); it; ++it) {
+      if (it.row() == j) {
+        inv_diag_[static_cast<std::size_t>(j)] = 1.0 / it.value();
+        continue;
+      }
+      col_value_[column_entry++] = static_cast<Scalar>(it.value());  // row j of Lᵀ, in order
+      row_value_[static_cast<std::size_t>(row_place_[lower++])] = static_cast<Scalar>(it.value());
+    }
+  return column_entry == col_value_.size() && lower == row_value_.size();
 }
 
 /// Row r of a triangular solve as a gather: y_r = (s − Σ_k value_k y_{index_k}) / diagonal, three

@@ -26,11 +26,14 @@
 // a collider's margin are pushed out to it along the normal, so the springs settle around the
 // contacts within the step; the contacts of the last pass then lose their inward speed and get
 // friction (as collide()).
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/cloth/stiffness_law.h"
+#include "dresskit/mesh/errors.h"
 #include "interleaved_cholesky.h"
 #include "simulator_internal.h"
 
@@ -58,16 +61,130 @@ struct LocalSpring {
   /// a small fraction of the stretch springs', so the lag costs no iterations (docs/results.md).
   double lagged_w;
 };
+
+/// The law's secant stiffness k(ε) without branches (fitted_k): ramp knots at thirds of the knee
+/// strain, then the straight continuation beyond it.
+inline double law_k(const LocalSpring& q, double strain) {
+  const double u = std::min(std::max(strain * (3.0 / kKneeStrain), 0.0), 3.0);
+  const double seg = static_cast<int>(u);
+  return q.k0 + q.rise * (1.0 / 9.0) * (seg * seg + (u - seg) * (2.0 * seg + 1.0)) +
+         q.slope * std::max(strain - kKneeStrain, 0.0);
+}
+
+/// The law's tangent stiffness dt/dL = k(ε) + k′(ε) ε (k0 in compression).
+inline double law_tangent(const LocalSpring& q, double strain) {
+  if (strain <= 0.0) return q.k0;
+  const double u = strain * (3.0 / kKneeStrain);
+  const double dk =
+      u >= 3.0 ? q.slope : q.rise * (1.0 / 9.0) * (2.0 * std::floor(u) + 1.0) * (3.0 / kKneeStrain);
+  return law_k(q, strain) + dk * strain;
+}
+
+/// The local step for a list of springs: adds each spring's w d (and, for lagged springs, its
+/// couplings at the current iterate) to the right-hand side R. Lagged (bending) springs are linear
+/// (k0 = k_knee), so their law is k0; the stretch springs' loop has no lagged terms. Check: also
+/// returns the largest ratio of a spring's tangent stiffness to its weight. Residual: adds the
+/// spring's part of the residual b − A x instead, w (d − e) = (w d − w e): the matrix's spring
+/// terms are w on the diagonal and −w off it (lagged springs: their couplings were at the
+/// current iterate on the right-hand side, so the same), so the residual needs no product with A.
+template <bool Lagged, bool Check = false, bool Residual = false>
+double local_step(const std::vector<LocalSpring>& springs, const double* x, const double* rest,
+                  int n, double beyond, double* R) {
+  double worst = 0.0;
+  for (const LocalSpring& q : springs) {
+    const int i = q.i, j = q.j;
+    double e[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
+    double L = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+    if (L < 1e-12) {  // no direction: take the rest direction
+      for (int a = 0; a < 3; ++a) e[a] = rest[j + a * n] - rest[i + a * n];
+      L = 0.0;
+    }
+    // 1 / |e| first: the division then runs alongside the law below instead of after it.
+    const double inv_norm =
+        1.0 / (L > 0.0 ? L : std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
+    const double strain = L * q.inv_L0 - 1.0;
+    const double k = Lagged ? q.k0 : law_k(q, strain);
+    if (Check) worst = std::max(worst, law_tangent(q, strain) / q.w);
+    const double stretch = L > beyond * q.L0 ? L * q.inv_L0 : 1.0;  // dynamic stiffness
+    const double t = k * strain * q.L0 * stretch;
+    // w d: the quadratic's pull w (L − ℓ) along e with ℓ = max(L − t/w, 0).
+    double scale = std::max(q.w * L - t, 0.0) * inv_norm;
+    if (Residual) scale -= q.w;  // minus the matrix's row: w (d − e), couplings included
+    for (int a = 0; a < 3; ++a) {
+      if (Lagged && !Residual) {
+        R[3 * j + a] += scale * e[a] + q.lagged_w * x[3 * i + a];
+        R[3 * i + a] += q.lagged_w * x[3 * j + a] - scale * e[a];
+      } else {
+        R[3 * j + a] += scale * e[a];
+        R[3 * i + a] -= scale * e[a];
+      }
+    }
+  }
+  return worst;
+}
+
+/// The law's energy L0² ∫₀^ε k(s) s ds, exact per segment: k0 ε²/2, plus the ramp rise/9 q(u)
+/// (q the piecewise-linear interpolant of u² at the knots u = 0…3, u = 3s/ε_knee) giving
+/// rise/9 (ε_knee/3)² ∫₀^U q(u) u du, plus beyond the knee the ramp's full rise, rise ∫ s ds, and
+/// slope ∫ (s − ε_knee) s ds. Equal to StiffnessLaw::energy (the L-BFGS chain test past the knee
+/// fails without the held rise).
+inline double law_energy(const LocalSpring& q, double strain) {
+  double e = 0.5 * q.k0 * strain * strain;
+  if (strain > 0.0) {
+    const double U = std::min(strain * (3.0 / kKneeStrain), 3.0);
+    const int j = std::min(static_cast<int>(U), 2);
+    static const double F[3] = {0.0, 1.0 / 3.0, 13.0 / 3.0};  // ∫₀^j q(u) u du
+    const double jj = j, u2 = U * U, j2 = jj * jj;
+    const double ramp = F[j] + j2 * (u2 - j2) / 2.0 +
+                        (2.0 * jj + 1.0) * ((u2 * U - j2 * jj) / 3.0 - jj * (u2 - j2) / 2.0);
+    e += q.rise * (1.0 / 9.0) * (kKneeStrain * kKneeStrain / 9.0) * ramp;
+    if (strain > kKneeStrain) {
+      const double a = kKneeStrain;
+      e += 0.5 * q.rise * (strain * strain - a * a) +  // the ramp's full rise, held
+           q.slope * (strain * strain * strain / 3.0 - a * strain * strain / 2.0 + a * a * a / 6.0);
+    }
+  }
+  return e * q.L0 * q.L0;
+}
 }  // namespace
+
+/// Spring k's constants with the weight w.
+LocalSpring local_spring(const SpringSet& s, int k, double w) {
+  const double rise = std::max(s.k_knee[k] - s.k_rest[k], 0.0);
+  return {s.i[k],
+          s.j[k],
+          s.rest_length[k],
+          1.0 / s.rest_length[k],
+          s.k_rest[k],
+          rise,
+          std::max(2.0 * rise, s.k_rest[k] + rise) / kKneeStrain,
+          w,
+          s.type[k] == SpringType::bending ? w : 0.0};
+}
 
 struct ClothSimulator::Projective {
   double h = 0.0;  ///< the step in the matrix: dt, or 2 dt / 3 for BDF2
   bool single_precision = true;
+  bool adaptive = false;  ///< weights from the springs' strains (projective_adaptive_weights)
   std::vector<bool> pinned;
   Eigen::VectorXd inertia;                         ///< m/h² + c m/h per particle
   Eigen::SparseMatrix<double, Eigen::RowMajor> A;  ///< the global matrix (pinned rows: identity)
   Eigen::SparseMatrix<double> to_pinned;  ///< free-row × pinned-column couplings, moved to the rhs
   std::vector<LocalSpring> springs;
+  std::vector<LocalSpring> stretch, bend;  ///< the same, split for the local step's two loops
+  /// Work arrays of a step, kept between steps: each is 6,561 × 3 doubles on the error bench's
+  /// cloth, above malloc's mmap threshold, so allocating them anew every step cost page faults
+  /// (5.6 % of a run's time in perf).
+  mutable RowX3 fixed, rhs, previous, X;
+  /// Adaptive weights: the largest tangent stiffness / weight of a stretch spring at the start of
+  /// an iteration since the weights were set.
+  mutable double worst = 0.0;
+  /// Adaptive weights: A column-major (factorised; its arrays are those of the symmetric A when
+  /// same_layout) and each spring's entries ii, jj, ij, ji in it and in to_pinned (−1: none).
+  Eigen::SparseMatrix<double> Acol;
+  bool same_layout = false;
+  std::vector<std::array<int, 4>> a_offset, b_offset;
+  mutable Eigen::MatrixX3d x0, v0, base, vbase, target, y;
   std::vector<int> pinned_list;
   detail::InterleavedCholesky<float> single;
   detail::InterleavedCholesky<double> full;
@@ -76,169 +193,279 @@ struct ClothSimulator::Projective {
       spare;  ///< the factorisation of the other step size (BDF2's start-up)
 };
 
-void ClothSimulator::step_projective(StepResult& r) {
-  const double dt = dt_;
+TimeScheme parse_time_scheme(const std::string& text) {
+  if (text == "backward_euler") return TimeScheme::backward_euler;
+  if (text == "bdf2") return TimeScheme::bdf2;
+  if (text == "midpoint") return TimeScheme::midpoint;
+  if (text == "tr_bdf2") return TimeScheme::tr_bdf2;
+  throw InputError("time_scheme: '" + text + "' is not backward_euler, bdf2, midpoint or tr_bdf2");
+}
+
+std::string to_string(TimeScheme scheme) {
+  switch (scheme) {
+    case TimeScheme::backward_euler:
+      return "backward_euler";
+    case TimeScheme::bdf2:
+      return "bdf2";
+    case TimeScheme::midpoint:
+      return "midpoint";
+    case TimeScheme::tr_bdf2:
+      return "tr_bdf2";
+  }
+  return "?";
+}
+
+// The factorisation for the step h in the matrix: the current one, the spare (BDF2 keeps backward
+// Euler's start-up matrix there), or a new one.
+void ClothSimulator::prepare_projective(double h, const std::vector<double>* weights) {
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
   const double c = options_.air_damping;
-  // BDF2's history: a completed step since the last try makes its start the previous state.
-  if (history_.t_start != time_) {
-    if (history_.t_start >= 0.0) {
-      history_.x_prev = history_.x_start;
-      history_.v_prev = history_.v_start;
-      history_.t_prev = history_.t_start;
-    }
-    history_.x_start = x_;
-    history_.v_start = v_;
-    history_.t_start = time_;
-  }
-  // Without a previous state a step apart (the first step, after a change of step or set_state) the
-  // step is backward Euler: its O(h²) error enters once, so the run stays second order.
-  const bool bdf2 = options_.time_scheme == TimeScheme::bdf2 && history_.t_prev >= 0.0 &&
-                    std::abs(time_ - history_.t_prev - dt) <= 1e-9 * dt;
-  const double h = bdf2 ? 2.0 * dt / 3.0 : dt;
-  Eigen::MatrixX3d base = x_, vbase = v_;  // x̂ and v̂ (backward Euler: x_n and v_n)
-  if (bdf2) {
-    base = (4.0 * x_ - history_.x_prev) / 3.0;
-    vbase = (4.0 * v_ - history_.v_prev) / 3.0;
-  }
-
-  // The factorisation for this h: the current one, the spare (BDF2 keeps backward Euler's start-up
-  // matrix there), or a new one.
   if (projective_ && projective_->h != h && projective_->spare && projective_->spare->h == h) {
     std::shared_ptr<Projective> current = projective_->spare;
     projective_->spare.reset();
     current->spare = projective_;
     projective_ = current;
   }
-  if (!projective_ || projective_->h != h || projective_->pinned != pinned_ ||
-      projective_->single_precision != options_.projective_single_precision) {
-    auto p = std::make_shared<Projective>();
-    p->h = h;
-    p->pinned = pinned_;
-    p->single_precision = options_.projective_single_precision;
-    p->inertia = model_.mass * (1.0 / (h * h) + c / h);
-    std::vector<Eigen::Triplet<double>> a, b;
-    a.reserve(static_cast<std::size_t>(4 * s.size() + n));
-    for (int v = 0; v < n; ++v) a.emplace_back(v, v, pinned_[v] ? 1.0 : p->inertia[v]);
-    auto couple = [&](int row, int col, double value) {
-      if (pinned_[row]) return;
-      (pinned_[col] ? b : a).emplace_back(row, col, value);
-    };
-    p->springs.resize(static_cast<std::size_t>(s.size()));
+  if (!weights && projective_ && projective_->h == h && projective_->pinned == pinned_ &&
+      projective_->single_precision == options_.projective_single_precision)
+    return;
+  // New adaptive weights for the same step and pins: the matrices' values change in place through
+  // each spring's entries, and the factor keeps its ordering and symbolic analysis (building the
+  // matrices anew from triplets took as long as the numeric factorisation, ~4.5 ms on the error
+  // bench's cloth).
+  if (weights && projective_ && projective_->adaptive && projective_->ok && projective_->h == h &&
+      projective_->pinned == pinned_ &&
+      projective_->single_precision == options_.projective_single_precision &&
+      projective_->same_layout) {
+    Projective& P = *projective_;
+    double* a = P.Acol.valuePtr();
+    double* b = P.to_pinned.valuePtr();
     for (int k = 0; k < s.size(); ++k) {
-      const int i = s.i[k], j = s.j[k];
-      const double w = projective_weight(s.k_rest[k], s.k_knee[k]);
-      const double rise = std::max(s.k_knee[k] - s.k_rest[k], 0.0);
-      const bool lagged =
-          s.type[k] == SpringType::bending;  // off the matrix: see LocalSpring::lagged_w
-      p->springs[k] = {i,
-                       j,
-                       s.rest_length[k],
-                       1.0 / s.rest_length[k],
-                       s.k_rest[k],
-                       rise,
-                       std::max(2.0 * rise, s.k_rest[k] + rise) / kKneeStrain,
-                       w,
-                       lagged ? w : 0.0};
-      couple(i, i, w);
-      couple(j, j, w);
-      if (lagged) continue;
-      couple(i, j, -w);
-      couple(j, i, -w);
+      LocalSpring& q = P.springs[static_cast<std::size_t>(k)];
+      const double dw = (*weights)[static_cast<std::size_t>(k)] - q.w;
+      if (dw == 0.0) continue;
+      const std::array<int, 4>& ao = P.a_offset[static_cast<std::size_t>(k)];
+      const std::array<int, 4>& bo = P.b_offset[static_cast<std::size_t>(k)];
+      for (int e = 0; e < 4; ++e) {
+        const double sign = e < 2 ? 1.0 : -1.0;
+        if (ao[e] >= 0) a[ao[e]] += sign * dw;
+        if (bo[e] >= 0) b[bo[e]] += sign * dw;
+      }
+      q.w += dw;
+      if (q.lagged_w > 0.0) q.lagged_w = q.w;
     }
-    // A stitch is the quadratic ½ k |Σ w x − d|² with d its soft-threshold target (seams.h).
-    int idx[3];
-    double sw[3];
-    for (int k = 0; k < model_.seams.size(); ++k) {
-      seam_weights(model_.seams, k, idx, sw);
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], model_.seams.stiffness[k] * sw[p] * sw[q]);
-    }
-    for (int v = 0; v < n; ++v)
-      if (pinned_[v]) p->pinned_list.push_back(v);
-    Eigen::SparseMatrix<double> A(n, n);
-    A.setFromTriplets(a.begin(), a.end());
-    p->A = A;
-    p->to_pinned.resize(n, n);
-    p->to_pinned.setFromTriplets(b.begin(), b.end());
-    p->ok = p->single_precision ? p->single.compute(A) : p->full.compute(A);
-    if (projective_ && projective_->h != h) {
-      p->spare = projective_;
-      p->spare->spare.reset();
-    }
-    projective_ = p;
-  }
-  const Projective& P = *projective_;
-  if (!P.ok) {
-    r.ok = false;
-    r.failure = "projective dynamics: the global matrix could not be factorised";
+    std::copy(a, a + P.Acol.nonZeros(), P.A.valuePtr());  // symmetric: the same arrays
+    P.stretch.clear(), P.bend.clear();
+    for (const LocalSpring& q : P.springs) (q.lagged_w > 0.0 ? P.bend : P.stretch).push_back(q);
+    P.worst = 0.0;
+    P.ok = P.single_precision ? P.single.refactor(P.Acol) : P.full.refactor(P.Acol);
     return;
   }
-
-  // Constant part of the right-hand side: inertia, air (with wind) and gravity; pinned rows hold
-  // x0.
-  const Eigen::MatrixX3d x0 = x_;
-  const Eigen::Vector3d wind = wind_at(time_ + dt);
-  const Eigen::MatrixX3d target = base + h * vbase;  // the inertia target
-  RowX3 fixed(n, 3), X(n, 3);
-  for (int v = 0; v < n; ++v) {
-    const double m = model_.mass(v);
-    fixed.row(v) = (m / (h * h)) * target.row(v) +
-                   (c * m / h) * (base.row(v) + h * wind.transpose()) +
-                   m * options_.gravity.transpose();
+  // Adaptive weights carry over to a new factorisation (a new step size or pin set).
+  std::vector<double> kept;
+  if (!weights && projective_ && projective_->adaptive) {
+    for (const LocalSpring& q : projective_->springs) kept.push_back(q.w);
+    weights = &kept;
   }
-  fixed -= P.to_pinned * x0;  // pinned particles stay where they are
-  for (int v = 0; v < n; ++v) {
-    if (pinned_[v]) fixed.row(v) = x0.row(v);
-    X.row(v) = pinned_[v] ? x0.row(v) : target.row(v);  // start from the inertia target
+  auto p = std::make_shared<Projective>();
+  p->h = h;
+  p->pinned = pinned_;
+  p->single_precision = options_.projective_single_precision;
+  p->adaptive = weights != nullptr;
+  p->inertia = model_.mass * (1.0 / (h * h) + c / h);
+  std::vector<Eigen::Triplet<double>> a, b;
+  a.reserve(static_cast<std::size_t>(4 * s.size() + n));
+  for (int v = 0; v < n; ++v) a.emplace_back(v, v, pinned_[v] ? 1.0 : p->inertia[v]);
+  auto couple = [&](int row, int col, double value) {
+    if (pinned_[row]) return;
+    (pinned_[col] ? b : a).emplace_back(row, col, value);
+  };
+  p->springs.resize(static_cast<std::size_t>(s.size()));
+  for (int k = 0; k < s.size(); ++k) {
+    const int i = s.i[k], j = s.j[k];
+    const double w = weights ? (*weights)[k] : projective_weight(s.k_rest[k], s.k_knee[k]);
+    const bool lagged =
+        s.type[k] == SpringType::bending;  // off the matrix: see LocalSpring::lagged_w
+    p->springs[k] = local_spring(s, k, w);
+    couple(i, i, w);
+    couple(j, j, w);
+    if (lagged) continue;
+    couple(i, j, -w);
+    couple(j, i, -w);
   }
+  // A stitch is the quadratic ½ k |Σ w x − d|² with d its soft-threshold target (seams.h).
+  int idx[3];
+  double sw[3];
+  for (int k = 0; k < model_.seams.size(); ++k) {
+    seam_weights(model_.seams, k, idx, sw);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], model_.seams.stiffness[k] * sw[p] * sw[q]);
+  }
+  for (const LocalSpring& q : p->springs) (q.lagged_w > 0.0 ? p->bend : p->stretch).push_back(q);
+  for (int v = 0; v < n; ++v)
+    if (pinned_[v]) p->pinned_list.push_back(v);
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(a.begin(), a.end());
+  p->A = A;
+  p->to_pinned.resize(n, n);
+  p->to_pinned.setFromTriplets(b.begin(), b.end());
+  if (p->adaptive) {  // where each spring's weight enters the matrices (for new weights)
+    p->Acol = A;
+    p->same_layout =
+        std::equal(A.outerIndexPtr(), A.outerIndexPtr() + n + 1, p->A.outerIndexPtr()) &&
+        std::equal(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros(), p->A.innerIndexPtr());
+    auto offset = [](const Eigen::SparseMatrix<double>& M, int row, int col) {
+      const int* inner = M.innerIndexPtr();
+      const int *first = inner + M.outerIndexPtr()[col], *last = inner + M.outerIndexPtr()[col + 1];
+      const int* at = std::lower_bound(first, last, row);
+      return at != last && *at == row ? static_cast<int>(at - inner) : -1;
+    };
+    p->a_offset.resize(static_cast<std::size_t>(s.size()));
+    p->b_offset.resize(static_cast<std::size_t>(s.size()));
+    for (int k = 0; k < s.size(); ++k) {
+      const int i = s.i[k], j = s.j[k];
+      const bool lagged = s.type[k] == SpringType::bending;
+      const int rows[4] = {i, j, i, j}, cols[4] = {i, j, j, i};
+      for (int e = 0; e < 4; ++e) {
+        const bool in = !pinned_[rows[e]] && !(lagged && e >= 2);
+        const bool to_pin = in && pinned_[cols[e]];
+        p->a_offset[static_cast<std::size_t>(k)][e] =
+            in && !to_pin ? offset(A, rows[e], cols[e]) : -1;
+        p->b_offset[static_cast<std::size_t>(k)][e] =
+            to_pin ? offset(p->to_pinned, rows[e], cols[e]) : -1;
+      }
+    }
+  }
+  // Adaptive weights keep no spare: a refactorisation for new weights (or a new step) keeps the
+  // old factor's ordering and symbolic analysis (same sparsity while the pins are the same).
+  const bool reuse = p->adaptive && projective_ && projective_->ok &&
+                     projective_->pinned == pinned_ &&
+                     projective_->single_precision == p->single_precision;
+  if (reuse) {
+    p->single = std::move(projective_->single);
+    p->full = std::move(projective_->full);
+  }
+  p->ok = p->single_precision ? (reuse ? p->single.refactor(A) : p->single.compute(A))
+                              : (reuse ? p->full.refactor(A) : p->full.compute(A));
+  if (projective_ && projective_->h != h && !p->adaptive) {
+    p->spare = projective_;
+    p->spare->spare.reset();
+  }
+  projective_ = p;
+}
 
-  RowX3 rhs(n, 3), previous(n, 3);
+// One minimisation of the incremental potential
+//   Σ m/(2h²)|x − target|² + Σ c m/(2h)|x − air_base − h wind|² + E(x) − Σ m g·x
+// (pinned particles at x0) by local/global iterations from X; h is the current factorisation's.
+// Fills the contacts of the last collision pass (projective_collisions) and returns the
+// iterations taken.
+int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
+                                     const Eigen::MatrixX3d& air_base, const Eigen::Vector3d& wind,
+                                     const Eigen::MatrixX3d& x0,
+                                     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X,
+                                     Contacts& contacts) {
+  const Projective& P = *projective_;
+  const double h = P.h, c = options_.air_damping;
+  const int n = static_cast<int>(x_.rows());
+  // Single precision solves for the change δ of the iterate from the residual b − A X; without
+  // stitches the residual is formed in the local step itself (the springs' w (d − e)), so the
+  // product with A is not needed (it was 0.07 of the ~0.9 ms an iteration took).
+  const bool fused = P.single_precision && model_.seams.size() == 0;
+  RowX3& fixed = P.fixed;
+  fixed.resize(n, 3);
+  {
+    double* F = fixed.data();
+    const double* T = target.data();
+    const double* B = air_base.data();
+    for (int d = 0; d < 3; ++d) {
+      const double air = h * wind[d], g = options_.gravity[d];
+      for (int v = 0; v < n; ++v) {
+        const double m = model_.mass(v);
+        F[3 * v + d] = (m / (h * h)) * T[v + d * n] + (c * m / h) * (B[v + d * n] + air) + m * g;
+      }
+    }
+    // Pinned particles stay where they are: their couplings move to the right-hand side (in the
+    // fused residual below they come with the springs' terms).
+    if (!fused)
+      for (int col = 0; col < P.to_pinned.outerSize(); ++col)
+        for (Eigen::SparseMatrix<double>::InnerIterator it(P.to_pinned, col); it; ++it)
+          for (int d = 0; d < 3; ++d) F[3 * it.row() + d] -= it.value() * x0(col, d);
+  }
+  for (int v : P.pinned_list) fixed.row(v) = x0.row(v), X.row(v) = x0.row(v);
+
+  if (options_.projective_lbfgs_history > 0) return projective_lbfgs(target, air_base, wind, x0, X);
+  RowX3 &rhs = P.rhs, &previous = P.previous;
+  // Collisions inside the iterations: particles within a collider's margin are pushed out to it.
+  auto push_out_in_iterations = [&](RowX3& Xc, Contacts& found) {
+    found.clear();
+    for (int v = 0; v < n; ++v) {
+      if (pinned_[v]) continue;
+      const double margin = options_.collision_margin + model_.layer_offset[model_.layer[v]];
+      for (int ci = 0; ci < static_cast<int>(options_.colliders.size()); ++ci) {
+        Eigen::Vector3d normal;
+        const Eigen::Vector3d p = Xc.row(v).transpose();
+        const double d = options_.colliders[ci].distance(p, &normal);
+        if (d >= margin) continue;
+        Xc.row(v) += (margin - d) * normal.transpose();
+        found.add(v, ci, normal, margin - d);
+      }
+    }
+  };
   const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
   const double* rest = model_.rest_positions.data();
-  // Contacts of the last collision pass: particle, collider and outward normal.
-  std::vector<int> contact_particle, contact_collider;
-  std::vector<Eigen::Vector3d> contact_normal;
-  std::vector<double> contact_push;
-  for (int it = 0; it < options_.projective_iterations; ++it) {
+  int iterations = 0;
+  for (int it = 0; it < options_.projective_iterations && fused; ++it) {
+    double* R = rhs.data();
+    const double* x = X.data();
+    const double* F = fixed.data();
+    rhs.resize(n, 3);
+    R = rhs.data();
+    for (int v = 0; v < n; ++v) {
+      const double a = P.inertia[v];
+      R[3 * v] = F[3 * v] - a * x[3 * v];
+      R[3 * v + 1] = F[3 * v + 1] - a * x[3 * v + 1];
+      R[3 * v + 2] = F[3 * v + 2] - a * x[3 * v + 2];
+    }
+    if (it == 0 && P.adaptive)
+      P.worst = std::max(P.worst, local_step<false, true, true>(P.stretch, x, rest, n, beyond, R));
+    else
+      local_step<false, false, true>(P.stretch, x, rest, n, beyond, R);
+    local_step<true, false, true>(P.bend, x, rest, n, beyond, R);
+    for (int v : P.pinned_list) R[3 * v] = R[3 * v + 1] = R[3 * v + 2] = 0.0;
+    previous = X;
+    P.single.solve_in_place(R);
+    X += rhs;
+    if (options_.projective_collisions && !options_.colliders.empty())
+      push_out_in_iterations(X, contacts);
+    double moved2 = 0.0;
+    for (int v = 0; v < n; ++v) {
+      const double* a = X.data() + 3 * v;
+      const double* b = previous.data() + 3 * v;
+      moved2 = std::max(moved2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                    (a[2] - b[2]) * (a[2] - b[2]));
+    }
+    iterations = it + 1;
+    if (std::sqrt(moved2) < options_.newton_tolerance) break;
+  }
+  for (int it = 0; it < options_.projective_iterations && !fused; ++it) {
     rhs = fixed;
     double* R = rhs.data();
     const double* x = X.data();
-    for (const LocalSpring& q : P.springs) {  // local step: each spring's target
-      const int i = q.i, j = q.j;
-      double e[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
-      double L = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
-      if (L < 1e-12) {  // no direction: take the rest direction
-        for (int a = 0; a < 3; ++a) e[a] = rest[j + a * n] - rest[i + a * n];
-        L = 0.0;
-      }
-      // 1 / |e| first: the division then runs alongside the law below instead of after it.
-      const double inv_norm =
-          1.0 / (L > 0.0 ? L : std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]));
-      // The law's secant stiffness without branches (fitted_k): ramp knots at thirds of the knee
-      // strain, then the straight continuation beyond it.
-      const double strain = L * q.inv_L0 - 1.0;
-      const double u = std::min(std::max(strain * (3.0 / kKneeStrain), 0.0), 3.0);
-      const double seg = static_cast<int>(u);
-      const double k = q.k0 + q.rise * (1.0 / 9.0) * (seg * seg + (u - seg) * (2.0 * seg + 1.0)) +
-                       q.slope * std::max(strain - kKneeStrain, 0.0);
-      const double stretch = L > beyond * q.L0 ? L * q.inv_L0 : 1.0;  // dynamic stiffness
-      const double t = k * strain * q.L0 * stretch;
-      // w d: the quadratic's pull w (L − ℓ) along e with ℓ = max(L − t/w, 0).
-      const double scale = std::max(q.w * L - t, 0.0) * inv_norm;
-      for (int a = 0; a < 3; ++a) {
-        R[3 * j + a] += scale * e[a] + q.lagged_w * x[3 * i + a];
-        R[3 * i + a] += q.lagged_w * x[3 * j + a] - scale * e[a];
-      }
-    }
+    if (it == 0 && P.adaptive)  // how far the start of the iterations has outgrown the weights
+      P.worst = std::max(P.worst, local_step<false, true>(P.stretch, x, rest, n, beyond, R));
+    else
+      local_step<false>(P.stretch, x, rest, n, beyond, R);  // each spring's target
+    local_step<true>(P.bend, x, rest, n, beyond, R);
     // Stitches: k d spread by their weights (d: the soft-threshold target of the current gap).
     int idx[3];
     double sw[3];
     for (int k = 0; k < model_.seams.size(); ++k) {
       seam_weights(model_.seams, k, idx, sw);
-      const Eigen::Vector3d gap = (sw[0] * X.row(idx[0]) + sw[1] * X.row(idx[1]) + sw[2] * X.row(idx[2])).transpose();
-      const Eigen::RowVector3d d = model_.seams.stiffness[k] * stitch_target(model_.seams, k, gap).transpose();
+      const Eigen::Vector3d gap =
+          (sw[0] * X.row(idx[0]) + sw[1] * X.row(idx[1]) + sw[2] * X.row(idx[2])).transpose();
+      const Eigen::RowVector3d d =
+          model_.seams.stiffness[k] * stitch_target(model_.seams, k, gap).transpose();
       for (int p = 0; p < 3; ++p) rhs.row(idx[p]) += sw[p] * d;
     }
     for (int v : P.pinned_list)
@@ -264,42 +491,284 @@ void ClothSimulator::step_projective(StepResult& r) {
       P.full.solve_in_place(R);
       X = rhs;
     }
-    if (options_.projective_collisions && !options_.colliders.empty()) {
-      contact_particle.clear(), contact_collider.clear(), contact_normal.clear(),
-          contact_push.clear();
-      for (int v = 0; v < n; ++v) {
-        if (pinned_[v]) continue;
-        const double margin = options_.collision_margin + model_.layer_offset[model_.layer[v]];
-        for (int ci = 0; ci < static_cast<int>(options_.colliders.size()); ++ci) {
-          Eigen::Vector3d normal;
-          const Eigen::Vector3d p = X.row(v).transpose();
-          const double d = options_.colliders[ci].distance(p, &normal);
-          if (d >= margin) continue;
-          X.row(v) += (margin - d) * normal.transpose();
-          contact_particle.push_back(v), contact_collider.push_back(ci),
-              contact_normal.push_back(normal);
-          contact_push.push_back(margin - d);
-        }
-      }
+    if (options_.projective_collisions && !options_.colliders.empty())
+      push_out_in_iterations(X, contacts);
+    double moved2 = 0.0;
+    for (int v = 0; v < n; ++v) {
+      const double* a = X.data() + 3 * v;
+      const double* b = previous.data() + 3 * v;
+      moved2 = std::max(moved2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                    (a[2] - b[2]) * (a[2] - b[2]));
     }
-    const double moved = (X - previous).rowwise().norm().maxCoeff();
-    r.newton_iterations = it + 1;
+    const double moved = std::sqrt(moved2);
+    iterations = it + 1;
     if (moved < options_.newton_tolerance) break;
   }
-  for (int v = 0; v < n; ++v)
+  return iterations;
+}
+
+// Quasi-Newton (L-BFGS) on the same incremental potential, with the projective matrix as the
+// initial Hessian (Liu, Bouaziz & Kavan 2017, "Quasi-Newton Methods for Real-Time Simulation of
+// Hyperelastic Materials"): the direction is the two-loop recursion over the last m pairs of
+// iterate and gradient changes around one solve with the prefactored matrix, and a backtracking
+// (Armijo) line search on the potential keeps every iteration a descent. Without history the
+// direction −A⁻¹∇G is exactly a local/global iteration, so this is projective dynamics with the
+// curvature it misses (the softer-than-w springs of a lightly stretched cloth, the stiffer ones
+// past the knee) learnt from the last iterations.
+int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
+                                     const Eigen::MatrixX3d& air_base, const Eigen::Vector3d& wind,
+                                     const Eigen::MatrixX3d& x0, RowX3& X) {
+  const Projective& P = *projective_;
+  const double h = P.h, c = options_.air_damping;
+  const int n = static_cast<int>(x_.rows());
+  // G(x) = Σ a/2 |x|² − b·x + E(x) (+ a constant) with a = m/h² + c m/h and
+  // b = m/h² target + c m/h (air_base + h wind) + m g.
+  RowX3 b(n, 3);
+  for (int v = 0; v < n; ++v) {
+    const double m = model_.mass(v);
+    b.row(v) = (m / (h * h)) * target.row(v) +
+               (c * m / h) * (air_base.row(v) + h * wind.transpose()) +
+               m * options_.gravity.transpose();
     if (pinned_[v]) X.row(v) = x0.row(v);
-  x_ = X;
-  v_ = (x_ - base) / h;
+  }
+  const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
+  const double* rest = model_.rest_positions.data();
+  const bool seams = model_.seams.size() > 0;
+  auto energy_gradient = [&](const RowX3& Xc, RowX3& g) {
+    const double* x = Xc.data();
+    double* G = g.data();
+    double energy = 0.0;
+    for (int v = 0; v < n; ++v) {
+      const double a = P.inertia[v];
+      for (int d = 0; d < 3; ++d) {  // a/2 |x − b/a|²: no cancellation against the large |x|²
+        const double r = a * x[3 * v + d] - b(v, d);
+        G[3 * v + d] = r;
+        energy += 0.5 * r * r / a;
+      }
+    }
+    for (const LocalSpring& q : P.springs) {
+      const int i = q.i, j = q.j;
+      double e[3] = {x[3 * j] - x[3 * i], x[3 * j + 1] - x[3 * i + 1], x[3 * j + 2] - x[3 * i + 2]};
+      const double L = std::sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2]);
+      const double strain = L * q.inv_L0 - 1.0;
+      energy += law_energy(q, strain);
+      double t = law_k(q, strain) * strain * q.L0;
+      if (L > beyond * q.L0) {
+        // Dynamic stiffness: tension × L/L0 beyond the limit, a function of L alone; its extra
+        // energy ∫ t(s)(s/L0 − 1) ds from the limit, by two-point Gauss.
+        const double lo = beyond * q.L0, mid = 0.5 * (L + lo),
+                     half = 0.5 * (L - lo) / std::sqrt(3.0);
+        for (double s_ : {mid - half, mid + half}) {
+          const double es = s_ * q.inv_L0 - 1.0;
+          energy += 0.5 * (L - lo) * law_k(q, es) * es * q.L0 * es;
+        }
+        t *= L * q.inv_L0;
+      }
+      if (L < 1e-12) continue;  // no direction: no force
+      const double scale = t / L;
+      for (int a = 0; a < 3; ++a) {
+        G[3 * j + a] += scale * e[a];
+        G[3 * i + a] -= scale * e[a];
+      }
+    }
+    (void)rest;
+    if (seams) {
+      const Eigen::MatrixX3d xs = Xc;
+      Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(n, 3);
+      add_seam_forces(model_.seams, xs, f);
+      g -= f;
+      energy += seam_energy(model_.seams, xs);
+    }
+    for (int v : P.pinned_list) g.row(v).setZero();
+    return energy;
+  };
+  const int m = options_.projective_lbfgs_history;
+  std::vector<RowX3> S(static_cast<std::size_t>(m)), Y(static_cast<std::size_t>(m));
+  std::vector<double> inv_sy(static_cast<std::size_t>(m)), alpha(static_cast<std::size_t>(m));
+  int stored = 0, newest = -1;
+  RowX3 g(n, 3), g_new(n, 3), p(n, 3), X_new(n, 3);
+  double G = energy_gradient(X, g);
+  int iterations = 0;
+  for (int it = 0; it < options_.projective_iterations; ++it) {
+    // Two-loop recursion: p = −H ∇G with H the L-BFGS inverse Hessian around A⁻¹.
+    p = -g;
+    for (int k = 0; k < stored; ++k) {
+      const int slot = (newest - k + m) % m;
+      alpha[slot] = inv_sy[slot] * (S[slot].array() * p.array()).sum();
+      p -= alpha[slot] * Y[slot];
+    }
+    if (P.single_precision)
+      P.single.solve_in_place(p.data());
+    else
+      P.full.solve_in_place(p.data());
+    for (int k = stored - 1; k >= 0; --k) {
+      const int slot = (newest - k + m) % m;
+      const double beta = inv_sy[slot] * (Y[slot].array() * p.array()).sum();
+      p += (alpha[slot] - beta) * S[slot];
+    }
+    for (int v : P.pinned_list) p.row(v).setZero();
+    double slope = (g.array() * p.array()).sum();
+    if (!(slope < 0.0)) {  // not a descent direction: forget the history, take the plain step
+      stored = 0;
+      p = -g;
+      if (P.single_precision)
+        P.single.solve_in_place(p.data());
+      else
+        P.full.solve_in_place(p.data());
+      for (int v : P.pinned_list) p.row(v).setZero();
+      slope = (g.array() * p.array()).sum();
+    }
+    double step = 1.0, G_new = G;
+    for (int search = 0; search < 10; ++search) {
+      X_new = X + step * p;
+      G_new = energy_gradient(X_new, g_new);
+      // Armijo, with the potential's rounding (a few ulps of its terms) counted as no change.
+      if (G_new <= G + 1e-4 * step * slope + 1e-13 * std::abs(G)) break;
+      step *= 0.5;
+    }
+    iterations = it + 1;
+    if (!(G_new <= G + 1e-13 * std::abs(G))) break;  // no decrease: X is as good as it gets
+    const double moved = std::abs(step) * p.rowwise().norm().maxCoeff();
+    // History: s = step p, y = ∇G change; kept when the curvature s·y is positive.
+    const int slot = (newest + 1) % m;
+    S[slot] = step * p;
+    Y[slot] = g_new - g;
+    const double sy = (S[slot].array() * Y[slot].array()).sum();
+    if (sy > 1e-300) {
+      inv_sy[slot] = 1.0 / sy;
+      newest = slot;
+      stored = std::min(stored + 1, m);
+    }
+    X.swap(X_new);
+    g.swap(g_new);
+    G = G_new;
+    if (moved < options_.newton_tolerance) break;
+  }
+  return iterations;
+}
+
+void ClothSimulator::step_projective(StepResult& r) {
+  const double dt = dt_;
+  const int n = static_cast<int>(x_.rows());
+  const TimeScheme scheme = options_.time_scheme;
+  // BDF2's history: a completed step since the last try makes its start the previous state.
+  if (history_.t_start != time_) {
+    if (history_.t_start >= 0.0) {
+      history_.x_prev = history_.x_start;
+      history_.v_prev = history_.v_start;
+      history_.t_prev = history_.t_start;
+    }
+    history_.x_start = x_;
+    history_.v_start = v_;
+    history_.t_start = time_;
+  }
+  // Without a previous state a step apart (the first step, after a change of step or set_state) the
+  // step is backward Euler: its O(h²) error enters once, so the run stays second order.
+  const bool bdf2 = scheme == TimeScheme::bdf2 && history_.t_prev >= 0.0 &&
+                    std::abs(time_ - history_.t_prev - dt) <= 1e-9 * dt;
+  // The step in the matrix: BDF2 2h/3; the midpoint rule's half step h/2 (its midpoint y is a
+  // backward Euler step of h/2 from x_n: x_{n+1} = 2y − x_n); TR-BDF2's two stages share one,
+  // γh/2 = (1 − γ) h/(2 − γ) = (1 − 1/√2) h.
+  const double tr_h = (1.0 - 1.0 / std::sqrt(2.0)) * dt;
+  const double h = bdf2                             ? 2.0 * dt / 3.0
+                   : scheme == TimeScheme::midpoint ? 0.5 * dt
+                   : scheme == TimeScheme::tr_bdf2  ? tr_h
+                                                    : dt;
+  if (options_.projective_adaptive_weights) {
+    // Each stretch spring's weight is the law's tangent stiffness a little beyond its strain (the
+    // iterations contract while the spring's stiffness stays below twice its weight): far below
+    // the one weight for all (the tangent just below the knee), which is 10–100 times the
+    // stiffness of a lightly stretched cloth and makes its iterations crawl. A spring whose
+    // stiffness passes 1.5 × its weight raises all weights to their springs' current strains
+    // (never lowering one) and the matrix is factorised again. Measured on the error bench:
+    // headroom 0.05 and trigger 1.5 (5 refactorisations in 1 s); weights at the tangent itself
+    // (headroom 0) or below it (0.7 × tangent) blew up with few iterations.
+    const double headroom = 0.05, trigger = 1.5;
+    const SpringSet& s = model_.springs;
+    const double* x = x_.data();
+    auto strain_of = [&](const LocalSpring& q) {
+      const double dx = x[q.j] - x[q.i], dy = x[q.j + n] - x[q.i + n],
+                   dz = x[q.j + 2 * n] - x[q.i + 2 * n];
+      return std::sqrt(dx * dx + dy * dy + dz * dz) * q.inv_L0 - 1.0;
+    };
+    const bool have = projective_ && projective_->adaptive;
+    // Has a stretch spring stiffened past its weight (checked by the first local step of every
+    // minimisation, at the point the iterations start from)?
+    const bool raise = !have || projective_->worst > trigger;
+    std::vector<double> weights;
+    if (raise) {
+      weights.resize(static_cast<std::size_t>(s.size()));
+      for (int k = 0; k < s.size(); ++k) {
+        const LocalSpring q = have ? projective_->springs[k] : local_spring(s, k, 0.0);
+        if (s.type[k] == SpringType::bending) {  // linear: its weight is its stiffness
+          weights[k] = s.k_rest[k];
+          continue;
+        }
+        const double wanted = law_tangent(q, strain_of(q) + headroom);
+        weights[k] = have ? std::max(q.w, wanted) : wanted;
+      }
+    }
+    prepare_projective(h, raise ? &weights : nullptr);
+  } else {
+    prepare_projective(h);
+  }
+  if (!projective_->ok) {
+    r.ok = false;
+    r.failure = "projective dynamics: the global matrix could not be factorised";
+    return;
+  }
+  const Projective& P = *projective_;
+  P.x0 = x_, P.v0 = v_;
+  const Eigen::MatrixX3d &x0 = P.x0, &v0 = P.v0;
+  RowX3& X = P.X;
+  Contacts contacts;
+  // x̂ and v̂ of the last stage: x_{n+1} = x̂ + h v_{n+1}
+  Eigen::MatrixX3d &base = P.base, &vbase = P.vbase, &target = P.target, &y = P.y;
+  base = x0, vbase = v0;
+  if (scheme == TimeScheme::midpoint || scheme == TimeScheme::tr_bdf2) {
+    // Implicit midpoint over the first stage (the whole step, or γ h of TR-BDF2): y minimises
+    // backward Euler's potential of step h from (x_n, v_n); the stage ends at 2y − x_n with the
+    // velocity 2 (y − x_n)/h − v_n.
+    const double stage = scheme == TimeScheme::midpoint ? dt : 2.0 * h;
+    target = x0 + h * v0;
+    X = target;
+    r.newton_iterations +=
+        projective_solve(target, x0, wind_at(time_ + 0.5 * stage), x0, X, contacts);
+    y = X;
+    base = 2.0 * y - x0;              // x at the stage's end
+    vbase = 2.0 / h * (y - x0) - v0;  // v there
+    if (scheme == TimeScheme::midpoint) {
+      x_ = base;
+      v_ = vbase;
+    } else {
+      // BDF2 over the rest of the step from (x_n, x_γ): x̂ = a x_γ − b x_n, a = 1/(γ(2 − γ)),
+      // b = (1 − γ)²/(γ(2 − γ)), the same for v.
+      const double gamma = 2.0 - std::sqrt(2.0);
+      const double a = 1.0 / (gamma * (2.0 - gamma)), b = (1.0 - gamma) * (1.0 - gamma) * a;
+      base = a * base - b * x0;
+      vbase = a * vbase - b * v0;
+    }
+  } else if (bdf2) {
+    base = (4.0 * x0 - history_.x_prev) / 3.0;
+    vbase = (4.0 * v0 - history_.v_prev) / 3.0;
+  }
+  if (scheme != TimeScheme::midpoint) {
+    target = base + h * vbase;  // the inertia target
+    X = target;                 // start from it
+    r.newton_iterations += projective_solve(target, base, wind_at(time_ + dt), x0, X, contacts);
+    x_ = X;
+    v_ = (x_ - base) / h;
+  }
   for (int v = 0; v < n; ++v)
-    if (pinned_[v]) v_.row(v).setZero();
+    if (pinned_[v]) x_.row(v) = x0.row(v), v_.row(v).setZero();
   // Contacts: no inward speed; static or kinetic friction on the sliding part (as collide()). The
   // normal speed the contact removed is the last pass's push over h (at convergence the push the
   // contact force gives: h g_n for a particle resting under gravity) plus any inward speed left.
-  for (std::size_t k = 0; k < contact_particle.size(); ++k) {
-    const Collider& col = options_.colliders[contact_collider[k]];
-    const Eigen::Vector3d& nk = contact_normal[k];
-    Eigen::Vector3d vel = v_.row(contact_particle[k]).transpose();
-    const double vn = vel.dot(nk), removed = std::max(-vn, 0.0) + contact_push[k] / h;
+  for (std::size_t k = 0; k < contacts.particle.size(); ++k) {
+    const Collider& col = options_.colliders[contacts.collider[k]];
+    const Eigen::Vector3d& nk = contacts.normal[k];
+    Eigen::Vector3d vel = v_.row(contacts.particle[k]).transpose();
+    const double vn = vel.dot(nk), removed = std::max(-vn, 0.0) + contacts.depth[k] / h;
     if (vn < 0.0) vel -= vn * nk;
     const Eigen::Vector3d vt = vel - vel.dot(nk) * nk;
     const double speed = vt.norm(),
@@ -308,7 +777,7 @@ void ClothSimulator::step_projective(StepResult& r) {
       vel -= vt;
     else
       vel -= (col.friction * removed / speed) * vt;
-    v_.row(contact_particle[k]) = vel.transpose();
+    v_.row(contacts.particle[k]) = vel.transpose();
   }
 }
 

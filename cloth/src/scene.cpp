@@ -509,7 +509,8 @@ ClothScene load_cloth_scene(const std::string& path) {
              "gust_amplitude", "gust_frequency", "collision_margin", "cg_tolerance", "adaptive", "dt_min",
              "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard",
              "projective_iterations", "time_scheme", "projective_collisions", "self_collision", "cloth_thickness",
-             "cloth_friction", "seam_tolerance", "weld_seams"});
+             "cloth_friction", "seam_tolerance", "weld_seams", "projective_lbfgs_history",
+             "projective_adaptive_weights"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -546,9 +547,15 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.seam_tolerance = s.number("seam_tolerance", o.seam_tolerance / scale, 1e-9, 1.0) * scale;
     scene.weld_seams = s.boolean("weld_seams", scene.weld_seams);
     const std::string scheme = s.text("time_scheme", "backward_euler");
-    if (scheme == "bdf2") o.time_scheme = TimeScheme::bdf2;
-    else if (scheme != "backward_euler") s.fail("'" + scheme + "' is not backward_euler or bdf2", "time_scheme");
+    try {
+      o.time_scheme = parse_time_scheme(scheme);
+    } catch (const InputError&) {
+      s.fail("'" + scheme + "' is not backward_euler, bdf2, midpoint or tr_bdf2", "time_scheme");
+    }
+    o.projective_lbfgs_history =
+        static_cast<int>(s.number("projective_lbfgs_history", o.projective_lbfgs_history, 0, 100));
     o.projective_collisions = s.boolean("projective_collisions", o.projective_collisions);
+    o.projective_adaptive_weights = s.boolean("projective_adaptive_weights", o.projective_adaptive_weights);
   }
   check_options(scene.simulation);
   return scene;

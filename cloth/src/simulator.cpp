@@ -62,6 +62,7 @@ void check_options(const SimulationOptions& o) {
   need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
   need(o.newton_iterations > 0, "newton_iterations: must be positive");
   need(o.projective_iterations > 0, "projective_iterations: must be positive");
+  need(o.projective_lbfgs_history >= 0, "projective_lbfgs_history: must be ≥ 0");
   need(std::isfinite(o.newton_tolerance) && o.newton_tolerance > 0.0, "newton_tolerance: must be positive");
   need(std::isfinite(o.dt_min) && o.dt_min > 0.0 && o.dt_min <= o.dt, "dt_min: must be positive and at most dt");
   need(std::isfinite(o.max_strain_change) && o.max_strain_change > 0.0, "max_strain_change: must be positive");

@@ -95,4 +95,13 @@ TEST(ClothScene, ProjectiveDynamicsKeys) {
   EXPECT_EQ(s.simulation.integrator, Integrator::projective);
   EXPECT_EQ(s.simulation.time_scheme, TimeScheme::bdf2);
   EXPECT_TRUE(s.simulation.projective_collisions);
+  EXPECT_FALSE(defaults.simulation.projective_adaptive_weights);
+  EXPECT_EQ(defaults.simulation.projective_lbfgs_history, 0);
+  const ClothScene t =
+      load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation": {"integrator":
+      "projective", "time_scheme": "tr_bdf2", "projective_adaptive_weights": true,
+      "projective_lbfgs_history": 5}})"));
+  EXPECT_EQ(t.simulation.time_scheme, TimeScheme::tr_bdf2);
+  EXPECT_TRUE(t.simulation.projective_adaptive_weights);
+  EXPECT_EQ(t.simulation.projective_lbfgs_history, 5);
 }

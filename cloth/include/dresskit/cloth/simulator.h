@@ -17,8 +17,13 @@ namespace dresskit {
 
 enum class Integrator { symplectic_euler, implicit_euler, newton, projective };
 enum class LinearSolver { conjugate_gradient, ldlt };
-/// Time discretisation of projective dynamics: backward Euler (first order) or BDF2 (second order).
-enum class TimeScheme { backward_euler, bdf2 };
+/// Time discretisation of projective dynamics: backward Euler (first order), BDF2 (second order),
+/// the implicit midpoint rule (second order, no numerical damping) or TR-BDF2 (second order,
+/// L-stable: a midpoint stage over γ h, γ = 2 − √2, then BDF2 over the rest; docs/cloth.md).
+enum class TimeScheme { backward_euler, bdf2, midpoint, tr_bdf2 };
+/// "backward_euler", "bdf2", "midpoint", "tr_bdf2"; throws InputError naming the value otherwise.
+TimeScheme parse_time_scheme(const std::string& text);
+std::string to_string(TimeScheme scheme);
 /// "symplectic", "implicit", "newton", "projective"; throws InputError naming the value otherwise.
 Integrator parse_integrator(const std::string& text);
 std::string to_string(Integrator integrator);
@@ -78,6 +83,13 @@ struct SimulationOptions {
   /// default: on the cloth-onto-sphere scene it lowered the largest strain at dt 1/60 but fought the
   /// strain limiter at 1/120 and made the run slower (docs/results.md).
   bool projective_collisions = false;
+  /// Projective dynamics: 0 = local/global iterations; m > 0 = L-BFGS with the last m pairs and the
+  /// projective matrix as initial Hessian, with a line search (Liu et al. 2017; docs/cloth.md).
+  int projective_lbfgs_history = 0;
+  /// Projective dynamics: each spring's weight follows its strain (the law's tangent stiffness a
+  /// little beyond it, raised and refactorised when a spring stiffens past it) instead of one
+  /// weight per spring from the law's knee (docs/cloth.md).
+  bool projective_adaptive_weights = false;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
   /// Adaptive time step: a failed step, or one whose largest strain changes by more than
   /// max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm steps
@@ -257,6 +269,15 @@ class ClothSimulator {
     Eigen::MatrixX3d x_prev, v_prev, x_start, v_start;
     double t_prev = -1.0, t_start = -1.0;
   } history_;
+  /// Projective dynamics (projective.cpp): the factorisation for step h, one minimisation.
+  void prepare_projective(double h, const std::vector<double>* weights = nullptr);
+  int projective_solve(const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
+                       const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0,
+                       Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X,
+                       Contacts& contacts);
+  int projective_lbfgs(const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
+                       const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0,
+                       Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X);
 };
 
 }  // namespace dresskit
