@@ -439,14 +439,27 @@ double ClothSimulator::push_out(const Collider& c, double margin, int i) {
 void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
   contacts_.clear();
   const double delta = options_.penalty_thickness;
+  const int colliders = static_cast<int>(options_.colliders.size());
+  // A particle's distance changes by at most √3 × its travel (the body grid's trilinear value has
+  // partial derivatives ≤ 1; analytic distances are 1-Lipschitz), so one that was far enough at its
+  // last lookup needs none now. On the 10k-particle cape draped on gc_mean_all a lookup costs ~0.1 µs
+  // (cache misses in the 34 MB grid) and a step made ~10,750 of them for ~200 contacts.
+  if (lookup_x_.size() != static_cast<std::size_t>(colliders)) {
+    lookup_x_.assign(static_cast<std::size_t>(colliders), x_);
+    lookup_d_ = Eigen::MatrixXd::Constant(x_.rows(), colliders, -1e300);
+  }
   for (int i = 0; i < x_.rows(); ++i) {
     // Outer layers keep clear of the layers beneath them too.
     const double margin = options_.collision_margin + model_.layer_offset[model_.layer[i]];
-    for (int ci = 0; ci < static_cast<int>(options_.colliders.size()); ++ci) {
+    for (int ci = 0; ci < colliders; ++ci) {
       const Collider& c = options_.colliders[ci];
       Eigen::Vector3d n;
       const Eigen::Vector3d x = row(x_, i);
+      const double travel = (x - row(lookup_x_[ci], i)).norm();
+      if (lookup_d_(i, ci) - 1.75 * travel > margin + delta + 1e-4) continue;
       const double d = c.distance(x, &n);
+      lookup_d_(i, ci) = d;
+      lookup_x_[ci].row(i) = x.transpose();
       if (c.penalty > 0.0 && d < margin + delta) contacts_.add(i, ci, n, margin + delta - std::max(d, margin));
       if (d >= margin || pinned_[i]) continue;
       ++r.collisions;

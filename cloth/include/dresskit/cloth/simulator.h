@@ -259,6 +259,9 @@ class ClothSimulator {
       particle.push_back(p), collider.push_back(c), normal.push_back(n), depth.push_back(d);
     }
   } contacts_;
+  /// Per collider: each particle's position and distance at its last lookup in collide().
+  std::vector<Eigen::MatrixX3d> lookup_x_;
+  Eigen::MatrixXd lookup_d_;
   /// Projective dynamics' prefactored global matrix, built at its first step and again when the
   /// step size or the pins change (projective.cpp).
   struct Projective;
