@@ -132,6 +132,8 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"moved_by_boundary_refinement", r.refined_vertices},
       {"normalized_cut", r.normalized_cut},
       {"clusters_before_merge", r.clusters_before_merge},
+      {"skirt_components", r.skirt_components},
+      {"skirt_band_fraction", r.skirt_band_fraction},
       {"axes",
        {{"up", vec(r.axes.up)},
         {"up_source", r.axes.up_source},
@@ -149,6 +151,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"bridge_gaps", o.bridge_gaps},
         {"boundary_band", o.boundary_band},
         {"limb_tip_fraction", o.limb_tip_fraction},
+        {"split_skirts", o.split_skirts},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
       {"seconds",
@@ -242,6 +245,11 @@ void SegmentCommand::add_to(CLI::App& app) {
                    "limb cuts follow the harmonic field from tips beyond this fraction of the "
                    "limb's depth (0: off)")
       ->capture_default_str();
+  command
+      ->add_option("--split-skirts", options.split_skirts,
+                   "cut a two-opening tube (a skirt) into waist band and left and right halves "
+                   "(1) or leave it to the spectrum (0)")
+      ->capture_default_str();
   command->add_flag("--json", as_json, "print labels.json's summary fields as JSON");
 }
 
@@ -306,6 +314,9 @@ int SegmentCommand::run() {
               r.axes.up.x(), r.axes.up.y(), r.axes.up.z(), r.axes.up_source.c_str(),
               r.axes.forward.x(), r.axes.forward.y(), r.axes.forward.z(),
               r.axes.forward_source.c_str(), r.eigen_residual, r.seconds.total * 1e3);
+  for (size_t k = 0; k < r.skirt_components.size(); ++k)
+    std::printf("component %d is a skirt: waist band down to %.0f %% of its length, then halves\n",
+                r.skirt_components[k], 100 * r.skirt_band_fraction[k]);
   if (r.isolated_vertices)
     std::printf("%d vertices without a face (%d duplicates labelled, the rest -1)\n",
                 r.isolated_vertices, duplicates);

@@ -204,9 +204,9 @@ TEST_P(MakeHumanOutfit, TopAndBottomMeanIou) {
 INSTANTIATE_TEST_SUITE_P(
     Segmentation, MakeHumanOutfit,
     // Goal 0.80. The thresholds are what the method reaches today, just below it (female casual
-    // top 0.846, bottom 0.801; blouse 0.901, skirt 0.146; male top 0.919, bottom 0.773), so that a
+    // top 0.846, bottom 0.801; blouse 0.901, skirt 0.880; male top 0.919, bottom 0.773), so that a
     // regression fails; where they are below 0.80 the goal is not met (docs/segmentation.md).
     ::testing::Values(OutfitCase{"female_casualsuit01", 0.84, 0.80},
-                      OutfitCase{"female_elegantsuit01", 0.89, 0.14},
+                      OutfitCase{"female_elegantsuit01", 0.89, 0.87},
                       OutfitCase{"male_casualsuit02", 0.91, 0.77}),
     [](const auto& info) { return info.param.key; });

@@ -40,6 +40,12 @@ struct SegmentationOptions {
   /// Limb cuts reshaped along isolines of the harmonic field from each limb's tip (vertices beyond
   /// this fraction of the limb's depth) to the hub's core (reshape_limb_cuts); 0 = off.
   double limb_tip_fraction = 0.95;
+  /// A component that is a tube with two openings, the lower one at least as wide as the upper one
+  /// (a skirt: detect_skirt), is cut by its own geometry into a waist band and left and right
+  /// halves (split_skirt, names skirt_waist, skirt_left, skirt_right) instead of by the spectrum:
+  /// it takes three parts of the total, when the given number leaves the other components at least
+  /// one each. false = a skirt is one part `skirt` (or whatever the spectrum gives it).
+  bool split_skirts = true;
   /// Up and forward (facing) directions of the character; a zero vector = estimate from the mesh
   /// (up: area-weighted PCA; forward: the feet, else the PCA axis of least spread, sign +Z).
   Eigen::Vector3d up = Eigen::Vector3d::Zero();
@@ -57,7 +63,8 @@ struct AxesEstimate {
 };
 
 struct NamedPart {
-  std::string name;  ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt, part_N
+  std::string name;         ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt,
+                            ///< skirt_waist, skirt_left, part_N
   double confidence = 0.0;  ///< 0–1: how clearly the geometry supports the name
   int component = 0;        ///< connected component the part lies in
   int vertices = 0;
@@ -91,6 +98,10 @@ struct SegmentationResult {
   int relabelled_vertices = 0;    ///< vertices changed by the clean-up (candidates without merging)
   int refined_vertices =
       0;  ///< vertices moved by the boundary refinement (random walker, isolines)
+  /// Components cut as skirts (split_skirts), and where each one's waist band ends, as a fraction
+  /// of the skirt's length from the waist.
+  std::vector<int> skirt_components;
+  std::vector<double> skirt_band_fraction;
   AxesEstimate axes;
   SegmentationTimings seconds;
 
