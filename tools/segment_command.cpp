@@ -151,6 +151,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"bridge_gaps", o.bridge_gaps},
         {"boundary_band", o.boundary_band},
         {"limb_tip_fraction", o.limb_tip_fraction},
+        {"symmetry", o.symmetry_tolerance},
         {"split_skirts", o.split_skirts},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
@@ -244,6 +245,12 @@ void SegmentCommand::add_to(CLI::App& app) {
       ->add_option("--limb-tip", options.limb_tip_fraction,
                    "limb cuts follow the harmonic field from tips beyond this fraction of the "
                    "limb's depth (0: off)")
+      ->capture_default_str();
+  command
+      ->add_option(
+          "--symmetry", options.symmetry_tolerance,
+          "limb cuts made mirror-symmetric when the mesh is symmetric within this many mean "
+          "edge lengths (0: off)")
       ->capture_default_str();
   command
       ->add_option("--split-skirts", options.split_skirts,

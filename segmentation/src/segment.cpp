@@ -288,14 +288,19 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   const Adjacency adj = adjacency(graph);
   // Boundaries: re-decided by a random walker in a band around each cut, then the limb cuts
   // reshaped along the harmonic field from the limb tips (docs/segmentation.md, "Boundaries").
-  auto refine_cuts = [&](Eigen::VectorXi& own) {
+  const double mean_edge = graph.num_edges() ? graph.length.mean() : 0.0;
+  auto refine_cuts = [&](Eigen::VectorXi& own, const std::vector<int>& vertices) {
     if (o.boundary_band > 0) {
       r.refined_vertices +=
           refine_boundaries_random_walker(graph, adj, mesh.V, o.boundary_band, own);
       if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, own);
     }
     if (o.limb_tip_fraction > 0) {
-      r.refined_vertices += reshape_limb_cuts(graph, adj, o.limb_tip_fraction, own);
+      const std::vector<int> mirror = o.symmetry_tolerance > 0
+                                          ? mirror_vertices(mesh.V, area, vertices, r.axes.left,
+                                                            o.symmetry_tolerance * mean_edge)
+                                          : std::vector<int>();
+      r.refined_vertices += reshape_limb_cuts(graph, adj, o.limb_tip_fraction, own, mirror);
       if (o.cleanup) clean_up(graph, adj, area, o.smoothing_iterations, own);
     }
   };
@@ -358,7 +363,7 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
       // A star (one hub, every other part a leaf) is as good as structure gets: stop there.
       if (best_leaves >= (comp.parts == 2 ? 2 : comp.parts - 1)) break;
     }
-    refine_cuts(best);
+    refine_cuts(best, comp.vertices);
     compact_labels(best);
     for (int v : comp.vertices) labels(v) = best(v) >= 0 ? base + best(v) : -1;
     r.normalized_cut += best_ncut;

@@ -199,14 +199,17 @@ TEST_P(MakeHumanOutfit, TopAndBottomMeanIou) {
         report(param.key + (is_top ? " top:" : " bottom:") + names, r.vertex_labels, g, r);
     EXPECT_GE(cmp.mean_iou, is_top ? param.top_min : param.bottom_min)
         << (is_top ? "top" : "bottom");
+    // Symmetric garments get symmetric cuts (docs/segmentation.md, "Symmetric cuts"): the male
+    // trousers' legs (mirror-symmetric within half an edge) match the truth equally well.
+    if (param.key == "male_casualsuit02" && !is_top) EXPECT_NEAR(cmp.iou[3], cmp.iou[4], 0.02);
   }
 }
 INSTANTIATE_TEST_SUITE_P(
     Segmentation, MakeHumanOutfit,
     // Goal 0.80. The thresholds are what the method reaches today, just below it (female casual
-    // top 0.846, bottom 0.801; blouse 0.901, skirt 0.880; male top 0.919, bottom 0.773), so that a
-    // regression fails; where they are below 0.80 the goal is not met (docs/segmentation.md).
-    ::testing::Values(OutfitCase{"female_casualsuit01", 0.84, 0.80},
+    // top 0.848, bottom 0.838; blouse 0.899, skirt 0.880; male top 0.919, bottom 0.806), so that a
+    // regression fails (docs/segmentation.md).
+    ::testing::Values(OutfitCase{"female_casualsuit01", 0.84, 0.83},
                       OutfitCase{"female_elegantsuit01", 0.89, 0.87},
-                      OutfitCase{"male_casualsuit02", 0.91, 0.77}),
+                      OutfitCase{"male_casualsuit02", 0.91, 0.80}),
     [](const auto& info) { return info.param.key; });

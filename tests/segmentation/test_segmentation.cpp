@@ -339,6 +339,24 @@ TEST(SegmentationSkirt, BandEndsWhereTheSkirtStopsFollowingTheHips) {
                   .is_skirt);
 }
 
+TEST(SegmentationCleanup, MirrorVerticesOfASymmetricTube) {
+  // A tube along z with 24 vertices per ring is symmetric across x = 0 (normal +X): vertex a of a
+  // ring mirrors to vertex 12 − a. Bent sideways it is not.
+  const TriangleMesh m = tube(9, 0.0, [](double) { return 1.0; });
+  const Eigen::VectorXd area = vertex_areas(m.V, m.F);
+  std::vector<int> all(m.num_vertices());
+  for (int v = 0; v < m.num_vertices(); ++v) all[v] = v;
+  const std::vector<int> mirror = mirror_vertices(m.V, area, all, Eigen::Vector3d::UnitX(), 0.05);
+  ASSERT_EQ(mirror.size(), static_cast<size_t>(m.num_vertices()));
+  for (int v = 0; v < m.num_vertices(); ++v) {
+    EXPECT_EQ(mirror[v], (v / 24) * 24 + (12 - v % 24 + 24) % 24) << v;
+    EXPECT_EQ(mirror[mirror[v]], v);
+  }
+  TriangleMesh bent = m;
+  for (int v = 0; v < bent.num_vertices(); ++v) bent.V(v, 0) += 0.1 * bent.V(v, 2) * bent.V(v, 2);
+  EXPECT_TRUE(mirror_vertices(bent.V, area, all, Eigen::Vector3d::UnitX(), 0.05).empty());
+}
+
 TEST(SegmentationScene, MannequinPartsAndNames) {
   const TriangleMesh& body = test::DefaultScene::get().mannequin;
   SegmentationOptions o;

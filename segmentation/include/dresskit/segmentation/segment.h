@@ -40,6 +40,11 @@ struct SegmentationOptions {
   /// Limb cuts reshaped along isolines of the harmonic field from each limb's tip (vertices beyond
   /// this fraction of the limb's depth) to the hub's core (reshape_limb_cuts); 0 = off.
   double limb_tip_fraction = 0.95;
+  /// Symmetric cuts: when at least 90 % of a component's vertices have a vertex within this many
+  /// mean edge lengths of their mirror image across the sagittal plane (normal: left, through the
+  /// component's area centroid), the limb cuts are made mirror-symmetric (reshape_limb_cuts with
+  /// mirror_vertices); 0 = off.
+  double symmetry_tolerance = 0.5;
   /// A component that is a tube with two openings, the lower one at least as wide as the upper one
   /// (a skirt: detect_skirt), is cut by its own geometry into a waist band and left and right
   /// halves (split_skirt, names skirt_waist, skirt_left, skirt_right) instead of by the spectrum:
