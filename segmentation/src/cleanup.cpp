@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <queue>
+#include <unordered_map>
 
 namespace dresskit {
 
@@ -490,11 +491,26 @@ std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorX
                                     static_cast<long long>(std::floor(p.y() / tolerance)),
                                     static_cast<long long>(std::floor(p.z() / tolerance))};
   };
-  std::map<std::array<long long, 3>, std::vector<int>> grid;
+  struct CellHash {
+    size_t operator()(const std::array<long long, 3>& c) const {
+      return static_cast<size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+    }
+  };
+  std::unordered_map<std::array<long long, 3>, std::vector<int>, CellHash> grid;
+  grid.reserve(vertices.size());
   for (int v : vertices) grid[cell(V.row(v).transpose())].push_back(v);
   std::vector<int> mirror(V.rows(), -1);
-  int found = 0;
-  for (int v : vertices) {
+  // Stop as soon as too many vertices lack a mirror vertex.
+  const double allowed_misses = (1.0 - share) * static_cast<double>(vertices.size());
+  int missed = 0;
+  // Every 16th vertex first: a mesh that is not symmetric is found out after a few of them.
+  std::vector<int> order;
+  order.reserve(vertices.size());
+  for (int start = 0; start < 16; ++start)
+    for (size_t k = start; k < vertices.size(); k += 16) order.push_back(vertices[k]);
+  const size_t sample = (vertices.size() + 15) / 16;  // the first stride
+  for (size_t i = 0; i < order.size(); ++i) {
+    const int v = order[i];
     const Eigen::Vector3d p = V.row(v).transpose();
     const Eigen::Vector3d image = p - 2 * (p.dot(nrm) - offset) * nrm;
     const auto c = cell(image);
@@ -509,9 +525,10 @@ std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorX
             if (d < best) best = d, mirror[v] = w;
           }
         }
-    found += mirror[v] >= 0;
+    if (mirror[v] < 0 && ++missed > allowed_misses) return {};
+    // The first stride is a sample of the whole: twice the allowed share of misses there is enough.
+    if (i + 1 == sample && missed > 2 * (1.0 - share) * static_cast<double>(sample)) return {};
   }
-  if (found < share * static_cast<double>(vertices.size())) return {};
   return mirror;
 }
 
