@@ -118,6 +118,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"components", r.components},
       {"parts", r.parts_chosen},
       {"parts_chosen_by", r.parts_automatic ? "eigengap" : "given"},
+      {"limbs_added_after_eigengap", r.limbs_added},
       {"parts_per_component", r.parts_per_component},
       {"part_names", r.part_names()},
       {"part_details", parts},
@@ -153,6 +154,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"limb_tip_fraction", o.limb_tip_fraction},
         {"symmetry", o.symmetry_tolerance},
         {"split_skirts", o.split_skirts},
+        {"grow_limbs", o.grow_limbs},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
       {"seconds",
@@ -253,6 +255,11 @@ void SegmentCommand::add_to(CLI::App& app) {
           "edge lengths (0: off)")
       ->capture_default_str();
   command
+      ->add_option("--grow-limbs", options.grow_limbs,
+                   "automatic parts: a closed mesh takes more parts while each new one is a limb "
+                   "(1) or keeps the eigengap's choice (0)")
+      ->capture_default_str();
+  command
       ->add_option("--split-skirts", options.split_skirts,
                    "cut a two-opening tube (a skirt) into waist band and left and right halves "
                    "(1) or leave it to the spectrum (0)")
@@ -313,6 +320,8 @@ int SegmentCommand::run() {
               mesh.num_vertices(), mesh.num_faces(), r.components, r.parts_chosen,
               r.parts_automatic ? "eigengap" : "given");
   if (r.eigengap > 0) std::printf(", eigengap %.2f", r.eigengap);
+  if (r.limbs_added > 0)
+    std::printf(", then %d more limb%s", r.limbs_added, r.limbs_added > 1 ? "s" : "");
   std::printf(")\n");
   for (const auto& p : r.parts)
     std::printf("  %-14s %6d vertices  %7.4f m²  confidence %.2f\n", p.name.c_str(), p.vertices,

@@ -477,6 +477,32 @@ int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adj, double tip_f
   return changed;
 }
 
+Eigen::VectorXd part_elongation(const MeshGraph& graph, const Adjacency& adj,
+                                const Eigen::MatrixX3d& V, const Eigen::VectorXi& labels) {
+  const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(std::max(q, 0));
+  if (q < 2) return out;
+  std::vector<double> dist;
+  std::vector<int> other;
+  distance_to_boundary(graph, adj, labels, dist, other);
+  Eigen::MatrixX3d centre = Eigen::MatrixX3d::Zero(q, 3);
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(q), radius = Eigen::VectorXd::Zero(q),
+                  depth = Eigen::VectorXd::Zero(q);
+  for (int v = 0; v < graph.num_vertices; ++v) {
+    if (labels(v) < 0 || !std::isfinite(dist[v])) continue;
+    depth(labels(v)) = std::max(depth(labels(v)), dist[v]);
+    if (dist[v] == 0.0) centre.row(labels(v)) += V.row(v), ++count(labels(v));
+  }
+  for (int l = 0; l < q; ++l)
+    if (count(l) > 0) centre.row(l) /= count(l);
+  for (int v = 0; v < graph.num_vertices; ++v)
+    if (labels(v) >= 0 && dist[v] == 0.0)
+      radius(labels(v)) += (V.row(v) - centre.row(labels(v))).norm();
+  for (int l = 0; l < q; ++l)
+    if (count(l) > 0 && radius(l) > 0) out(l) = depth(l) / (radius(l) / count(l));
+  return out;
+}
+
 std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorXd& area,
                                  const std::vector<int>& vertices, const Eigen::Vector3d& normal,
                                  double tolerance, double share) {

@@ -105,6 +105,13 @@ TEST_P(MakeHumanBody, MeanIouAndNames) {
       EXPECT_GT(r.axes.forward.dot(Eigen::Vector3d::UnitZ()), 0.95) << r.axes.forward_source;
     }
   }
+  // The number of parts chosen automatically: the eigengap's 5, then the head as a sixth limb.
+  SegmentationOptions automatic = body_options(true);
+  automatic.parts = 0;
+  const SegmentationResult a = segment_mesh(mesh, automatic);
+  EXPECT_EQ(a.parts_chosen, 6);
+  EXPECT_EQ(a.limbs_added, 1);
+  EXPECT_GE(report(GetParam() + " (parts automatic)", a.vertex_labels, truth, a).mean_iou, 0.85);
 }
 INSTANTIATE_TEST_SUITE_P(Segmentation, MakeHumanBody,
                          ::testing::Values("mh_woman_young_average", "mh_man_young_average",
@@ -130,6 +137,13 @@ TEST_P(GarmentCodeBody, MeanIouAndNames) {
       EXPECT_GT(r.axes.forward.dot(Eigen::Vector3d::UnitZ()), 0.95) << r.axes.forward_source;
     }
   }
+  SegmentationOptions automatic = body_options(true);
+  automatic.parts = 0;
+  const SegmentationResult a = segment_mesh(mesh, automatic);
+  EXPECT_EQ(a.parts_chosen, 6);
+  EXPECT_GE(
+      report(GetParam() + " (parts automatic)", merge_named(a, "head", "torso"), truth, a).mean_iou,
+      0.85);
 }
 INSTANTIATE_TEST_SUITE_P(Segmentation, GarmentCodeBody,
                          ::testing::Values("gc_mean_all", "gc_mean_all_tpose"));

@@ -70,6 +70,13 @@ std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorX
                                  const std::vector<int>& vertices, const Eigen::Vector3d& normal,
                                  double tolerance, double share = 0.9);
 
+/// For each label (0..max): its depth (the largest geodesic distance, within the label, from its
+/// boundary with other labels) divided by the radius of that boundary (the mean distance of the
+/// boundary vertices from their centroid): a limb, a sleeve or a head sticks out further than its
+/// junction is wide (≥ 1), a collar or a hem band does not. 0 for a label without a boundary.
+Eigen::VectorXd part_elongation(const MeshGraph& graph, const Adjacency& adjacency,
+                                const Eigen::MatrixX3d& V, const Eigen::VectorXi& labels);
+
 /// #F face labels: the label that at least two corners share, else the first corner's.
 Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels);
 

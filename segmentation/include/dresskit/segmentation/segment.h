@@ -21,6 +21,11 @@ struct SegmentationOptions {
   /// union of the components' spectra, between #components + 1 and max_parts.
   int parts = 0;
   int max_parts = 8;  ///< upper bound of the automatic choice
+  /// Automatic choice only: after the eigengap, a closed component (a body, no boundary edge) takes
+  /// one more part while the result stays a star (a hub and limbs) with one more limb that sticks
+  /// out at least as far as its junction is wide (part_elongation ≥ 1); this separates a body's
+  /// head, which the eigengap leaves with the torso. Garments are left to the eigengap.
+  bool grow_limbs = true;
   AffinityOptions affinity;
   /// Boundary vertices of one component closer than this many mean edge lengths, and more than six
   /// edges apart, are joined (bridge_boundary_gaps: a blouse's open front); 0 = off.
@@ -89,7 +94,8 @@ struct SegmentationResult {
   int parts_chosen =
       0;  ///< parts in the result (the number asked for unless a cluster came out empty)
   bool parts_automatic = false;
-  int components = 0;  ///< connected components with faces
+  int limbs_added = 0;  ///< parts added after the eigengap's choice (grow_limbs)
+  int components = 0;   ///< connected components with faces
   std::vector<int> parts_per_component;
   int isolated_vertices = 0;  ///< vertices without a face (label −1)
   int bridged_edges = 0;      ///< edges added across boundary gaps
