@@ -119,7 +119,7 @@ void split_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V, const Eigen:
   frame.band_fraction = (length - frame.band_height) / length;
   for (int v : vertices) {
     const double side = flat(v).dot(frame.left);
-    if (height(v) >= frame.band_height || std::abs(side) < 1e-3 * frame.waist_radius)
+    if (height(v) >= frame.band_height || std::abs(side) < 0.05 * mean_edge)
       labels(v) = 0;
     else
       labels(v) = side > 0 ? 1 : 2;

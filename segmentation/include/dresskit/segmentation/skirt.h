@@ -46,9 +46,9 @@ SkirtFrame detect_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V,
 /// the waist slice to the hem slice (Kneedle), i.e. where the skirt stops following the hips.
 /// Without a knee (a plain tube, a cone, a skirt that flares ever faster) the band is the top
 /// slice. Below the band, each vertex goes to the side of the sagittal plane (through the axis,
-/// normal `left`) it lies on; vertices on the plane (within 0.1 % of the waist's radius: a centre
-/// seam) belong to neither half and stay with the band. Slices are two mean edge lengths high (6–50
-/// of them). Fills frame.band_height / band_fraction.
+/// normal `left`) it lies on; vertices on the plane (within 5 % of the mean edge length: a
+/// centre seam) belong to neither half and stay with the band. Slices are two mean edge lengths
+/// high (6–50 of them). Fills frame.band_height / band_fraction.
 void split_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V,
                  const Eigen::VectorXd& vertex_area, const std::vector<int>& vertices,
                  SkirtFrame& frame, Eigen::VectorXi& labels);
