@@ -118,6 +118,7 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"components", r.components},
       {"parts", r.parts_chosen},
       {"parts_chosen_by", r.parts_automatic ? "eigengap" : "given"},
+      {"limbs_added_after_eigengap", r.limbs_added},
       {"parts_per_component", r.parts_per_component},
       {"part_names", r.part_names()},
       {"part_details", parts},
@@ -132,6 +133,8 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
       {"moved_by_boundary_refinement", r.refined_vertices},
       {"normalized_cut", r.normalized_cut},
       {"clusters_before_merge", r.clusters_before_merge},
+      {"skirt_components", r.skirt_components},
+      {"skirt_band_fraction", r.skirt_band_fraction},
       {"axes",
        {{"up", vec(r.axes.up)},
         {"up_source", r.axes.up_source},
@@ -149,6 +152,9 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
         {"bridge_gaps", o.bridge_gaps},
         {"boundary_band", o.boundary_band},
         {"limb_tip_fraction", o.limb_tip_fraction},
+        {"symmetry", o.symmetry_tolerance},
+        {"split_skirts", o.split_skirts},
+        {"grow_limbs", o.grow_limbs},
         {"seed", o.kmeans.seed},
         {"cleanup", o.cleanup}}},
       {"seconds",
@@ -242,6 +248,22 @@ void SegmentCommand::add_to(CLI::App& app) {
                    "limb cuts follow the harmonic field from tips beyond this fraction of the "
                    "limb's depth (0: off)")
       ->capture_default_str();
+  command
+      ->add_option(
+          "--symmetry", options.symmetry_tolerance,
+          "limb cuts made mirror-symmetric when the mesh is symmetric within this many mean "
+          "edge lengths (0: off)")
+      ->capture_default_str();
+  command
+      ->add_option("--grow-limbs", options.grow_limbs,
+                   "automatic parts: a closed mesh takes more parts while each new one is a limb "
+                   "(1) or keeps the eigengap's choice (0)")
+      ->capture_default_str();
+  command
+      ->add_option("--split-skirts", options.split_skirts,
+                   "cut a two-opening tube (a skirt) into waist band and left and right halves "
+                   "(1) or leave it to the spectrum (0)")
+      ->capture_default_str();
   command->add_flag("--json", as_json, "print labels.json's summary fields as JSON");
 }
 
@@ -298,6 +320,8 @@ int SegmentCommand::run() {
               mesh.num_vertices(), mesh.num_faces(), r.components, r.parts_chosen,
               r.parts_automatic ? "eigengap" : "given");
   if (r.eigengap > 0) std::printf(", eigengap %.2f", r.eigengap);
+  if (r.limbs_added > 0)
+    std::printf(", then %d more limb%s", r.limbs_added, r.limbs_added > 1 ? "s" : "");
   std::printf(")\n");
   for (const auto& p : r.parts)
     std::printf("  %-14s %6d vertices  %7.4f m²  confidence %.2f\n", p.name.c_str(), p.vertices,
@@ -306,6 +330,9 @@ int SegmentCommand::run() {
               r.axes.up.x(), r.axes.up.y(), r.axes.up.z(), r.axes.up_source.c_str(),
               r.axes.forward.x(), r.axes.forward.y(), r.axes.forward.z(),
               r.axes.forward_source.c_str(), r.eigen_residual, r.seconds.total * 1e3);
+  for (size_t k = 0; k < r.skirt_components.size(); ++k)
+    std::printf("component %d is a skirt: waist band down to %.0f %% of its length, then halves\n",
+                r.skirt_components[k], 100 * r.skirt_band_fraction[k]);
   if (r.isolated_vertices)
     std::printf("%d vertices without a face (%d duplicates labelled, the rest -1)\n",
                 r.isolated_vertices, duplicates);

@@ -54,6 +54,14 @@ std::vector<PartDescriptor> describe_parts(const TriangleMesh& mesh) {
 }
 
 namespace {
+// The body part a garment part of another name follows: a skirt's halves (segmentation's
+// skirt_left / skirt_right) follow the legs, as trouser legs do.
+std::string body_name_for(const std::string& garment_part) {
+  if (garment_part == "skirt_left") return "leg_left";
+  if (garment_part == "skirt_right") return "leg_right";
+  return garment_part;
+}
+
 double descriptor_cost(const PartDescriptor& g, const PartDescriptor& b) {
   return (g.relative_position - b.relative_position).norm() + (g.extents - b.extents).norm() +
          (1.0 - std::abs(g.main_axis.dot(b.main_axis)));
@@ -72,7 +80,7 @@ MatchingResult match_parts(const std::vector<PartDescriptor>& garment,
   std::vector<int> left;  // garment parts without a namesake on the body
   for (std::size_t g = 0; g < garment.size(); ++g) {
     const auto it = std::find_if(body.begin(), body.end(), [&](const PartDescriptor& b) {
-      return b.name == garment[g].name;
+      return b.name == body_name_for(garment[g].name);
     });
     if (it == body.end()) {
       left.push_back(static_cast<int>(g));

@@ -2,11 +2,13 @@
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
 #include <queue>
+#include <unordered_map>
 
 namespace dresskit {
 
@@ -373,19 +375,21 @@ int refine_boundaries_random_walker(const MeshGraph& graph, const Adjacency& adj
 }
 
 int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adj, double tip_fraction,
-                      Eigen::VectorXi& labels) {
+                      Eigen::VectorXi& labels, const std::vector<int>& mirror) {
   const int n = graph.num_vertices;
   const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
   if (q < 2 || !(tip_fraction > 0)) return 0;
   Eigen::MatrixXd cut;
   Eigen::VectorXd volume;
   part_graph(graph, labels, q, cut, volume);
-  // The hub: a part that touches every other part (with two parts, the larger by volume).
+  // The hub: a part that touches every other part, and of those the one sharing the most affinity
+  // with the others (two trouser legs that touch at the crotch touch every other part too, along a
+  // few edges); with two parts, the larger by volume.
   int hub = -1;
-  for (int a = 0; a < q && hub < 0; ++a) {
+  for (int a = 0; a < q; ++a) {
     bool all = true;
     for (int b = 0; b < q; ++b) all = all && (a == b || cut(a, b) > 0);
-    if (all) hub = a;
+    if (all && (hub < 0 || cut.row(a).sum() > cut.row(hub).sum())) hub = a;
   }
   if (q == 2) hub = volume(0) >= volume(1) ? 0 : 1;
   if (hub < 0) return 0;
@@ -396,12 +400,35 @@ int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adj, double tip_f
   for (int v = 0; v < n; ++v)
     if (labels(v) >= 0 && std::isfinite(dist[v]))
       depth[labels(v)] = std::max(depth[labels(v)], dist[v]);
+  // Mirror limb of each label: the label most mirror images of its vertices carry (pairs that
+  // choose each other only).
+  std::vector<int> twin(q, -1);
+  if (!mirror.empty()) {
+    Eigen::MatrixXi votes = Eigen::MatrixXi::Zero(q, q);
+    for (int v = 0; v < n; ++v)
+      if (labels(v) >= 0 && mirror[v] >= 0 && labels(mirror[v]) >= 0)
+        ++votes(labels(v), labels(mirror[v]));
+    for (int l = 0; l < q; ++l) {
+      Eigen::Index best = 0;
+      if (votes.row(l).maxCoeff(&best) > 0) twin[l] = static_cast<int>(best);
+    }
+    for (int l = 0; l < q; ++l)
+      if (twin[l] >= 0 && twin[twin[l]] != l) twin[l] = -1;
+  }
   // Seeds: each part's far end (a limb's tip, the hub's core), from tip_fraction of its depth on.
   std::vector<int> seed(n, -1);
   for (int v = 0; v < n; ++v)
     if (labels(v) >= 0 && std::isfinite(dist[v]) && dist[v] >= tip_fraction * depth[labels(v)])
       seed[v] = labels(v);
-  const Eigen::MatrixXd P = random_walker(graph, labels, seed, q);
+  Eigen::MatrixXd P = random_walker(graph, labels, seed, q);
+  if (!mirror.empty()) {
+    const Eigen::MatrixXd own = P;
+    for (int v = 0; v < n; ++v) {
+      if (labels(v) < 0 || mirror[v] < 0 || labels(mirror[v]) < 0) continue;
+      for (int l = 0; l < q; ++l)
+        if (twin[l] >= 0) P(v, l) = 0.5 * (own(v, l) + own(mirror[v], twin[l]));
+    }
+  }
   // Level of each limb's cut: the mean of its field over the vertices on the limb–hub boundary
   // (both sides).
   Eigen::VectorXd level = Eigen::VectorXd::Zero(q), count = Eigen::VectorXd::Zero(q);
@@ -414,6 +441,22 @@ int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adj, double tip_f
   }
   for (int l = 0; l < q; ++l)
     if (count(l) > 0) level(l) /= count(l);
+  // Limbs that touch each other (two trouser legs at the crotch): both cuts are the isoline
+  // through the crotch, the vertex where the two fields balance highest (the largest
+  // min(u_a, u_b)), instead of the mean level of the current cuts. The legs then start at the
+  // crotch, and their cuts rise from it towards the outer hips as the fields do.
+  for (int a = 0; a < q; ++a)
+    for (int b = a + 1; b < q; ++b) {
+      if (a == hub || b == hub || !(cut(a, b) > 0)) continue;
+      double crotch = 0;
+      for (int v = 0; v < n; ++v)
+        if (labels(v) >= 0) crotch = std::max(crotch, std::min(P(v, a), P(v, b)));
+      if (crotch > 0) level(a) = level(b) = crotch;
+    }
+  const Eigen::VectorXd own_level = level;
+  for (int l = 0; l < q; ++l)
+    if (twin[l] >= 0 && twin[l] != l && l != hub && twin[l] != hub)
+      level(l) = 0.5 * (own_level(l) + own_level(twin[l]));
   // A vertex belongs to the limb whose field, relative to that limb's cut level, is highest, if
   // it is at or above the level; otherwise to the hub.
   Eigen::VectorXi out = labels;
@@ -432,6 +475,87 @@ int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adj, double tip_f
   }
   labels = out;
   return changed;
+}
+
+Eigen::VectorXd part_elongation(const MeshGraph& graph, const Adjacency& adj,
+                                const Eigen::MatrixX3d& V, const Eigen::VectorXi& labels) {
+  const int q = labels.size() ? labels.maxCoeff() + 1 : 0;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(std::max(q, 0));
+  if (q < 2) return out;
+  std::vector<double> dist;
+  std::vector<int> other;
+  distance_to_boundary(graph, adj, labels, dist, other);
+  Eigen::MatrixX3d centre = Eigen::MatrixX3d::Zero(q, 3);
+  Eigen::VectorXd count = Eigen::VectorXd::Zero(q), radius = Eigen::VectorXd::Zero(q),
+                  depth = Eigen::VectorXd::Zero(q);
+  for (int v = 0; v < graph.num_vertices; ++v) {
+    if (labels(v) < 0 || !std::isfinite(dist[v])) continue;
+    depth(labels(v)) = std::max(depth(labels(v)), dist[v]);
+    if (dist[v] == 0.0) centre.row(labels(v)) += V.row(v), ++count(labels(v));
+  }
+  for (int l = 0; l < q; ++l)
+    if (count(l) > 0) centre.row(l) /= count(l);
+  for (int v = 0; v < graph.num_vertices; ++v)
+    if (labels(v) >= 0 && dist[v] == 0.0)
+      radius(labels(v)) += (V.row(v) - centre.row(labels(v))).norm();
+  for (int l = 0; l < q; ++l)
+    if (count(l) > 0 && radius(l) > 0) out(l) = depth(l) / (radius(l) / count(l));
+  return out;
+}
+
+std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorXd& area,
+                                 const std::vector<int>& vertices, const Eigen::Vector3d& normal,
+                                 double tolerance, double share) {
+  if (vertices.empty() || !(tolerance > 0) || !(normal.norm() > 0)) return {};
+  const Eigen::Vector3d nrm = normal.normalized();
+  double total = 0, offset = 0;
+  for (int v : vertices) total += area(v), offset += area(v) * V.row(v).dot(nrm);
+  offset = total > 0 ? offset / total : 0.0;
+  // Hash grid of cell `tolerance`: the nearest vertex within it lies in the 27 cells around.
+  auto cell = [&](const Eigen::Vector3d& p) {
+    return std::array<long long, 3>{static_cast<long long>(std::floor(p.x() / tolerance)),
+                                    static_cast<long long>(std::floor(p.y() / tolerance)),
+                                    static_cast<long long>(std::floor(p.z() / tolerance))};
+  };
+  struct CellHash {
+    size_t operator()(const std::array<long long, 3>& c) const {
+      return static_cast<size_t>(c[0] * 73856093LL ^ c[1] * 19349663LL ^ c[2] * 83492791LL);
+    }
+  };
+  std::unordered_map<std::array<long long, 3>, std::vector<int>, CellHash> grid;
+  grid.reserve(vertices.size());
+  for (int v : vertices) grid[cell(V.row(v).transpose())].push_back(v);
+  std::vector<int> mirror(V.rows(), -1);
+  // Stop as soon as too many vertices lack a mirror vertex.
+  const double allowed_misses = (1.0 - share) * static_cast<double>(vertices.size());
+  int missed = 0;
+  // Every 16th vertex first: a mesh that is not symmetric is found out after a few of them.
+  std::vector<int> order;
+  order.reserve(vertices.size());
+  for (int start = 0; start < 16; ++start)
+    for (size_t k = start; k < vertices.size(); k += 16) order.push_back(vertices[k]);
+  const size_t sample = (vertices.size() + 15) / 16;  // the first stride
+  for (size_t i = 0; i < order.size(); ++i) {
+    const int v = order[i];
+    const Eigen::Vector3d p = V.row(v).transpose();
+    const Eigen::Vector3d image = p - 2 * (p.dot(nrm) - offset) * nrm;
+    const auto c = cell(image);
+    double best = tolerance;
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy)
+        for (long long dz = -1; dz <= 1; ++dz) {
+          const auto it = grid.find({c[0] + dx, c[1] + dy, c[2] + dz});
+          if (it == grid.end()) continue;
+          for (int w : it->second) {
+            const double d = (V.row(w).transpose() - image).norm();
+            if (d < best) best = d, mirror[v] = w;
+          }
+        }
+    if (mirror[v] < 0 && ++missed > allowed_misses) return {};
+    // The first stride is a sample of the whole: twice the allowed share of misses there is enough.
+    if (i + 1 == sample && missed > 2 * (1.0 - share) * static_cast<double>(sample)) return {};
+  }
+  return mirror;
 }
 
 }  // namespace dresskit

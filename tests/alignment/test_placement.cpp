@@ -63,6 +63,31 @@ TEST(Matching, ByNameAndByDescriptorsWhenNamesDiffer) {
   EXPECT_TRUE(by_shape.unmatched_garment_parts.empty());
 }
 
+TEST(Matching, SkirtHalvesFollowTheLegsByName) {
+  // segment_mesh cuts a skirt into skirt_waist, skirt_left and skirt_right: the halves go to the
+  // legs by name, the waist band by descriptors.
+  const TriangleMesh& body = test::DefaultScene::get().mannequin;
+  const std::vector<PartDescriptor> parts = describe_parts(body);
+  std::vector<PartDescriptor> skirt;
+  for (const PartDescriptor& p : parts) {
+    if (p.name == "leg_left" || p.name == "leg_right" || p.name == "torso") {
+      skirt.push_back(p);
+      skirt.back().name = p.name == "torso" ? "skirt_waist" : "skirt_" + p.name.substr(4);
+    }
+  }
+  const MatchingResult m = match_parts(skirt, parts);
+  ASSERT_EQ(m.matches.size(), 3u);
+  for (const auto& match : m.matches) {
+    if (match.garment_part == "skirt_waist") {
+      EXPECT_EQ(match.body_part, "torso");
+      EXPECT_EQ(match.by, "descriptor");
+    } else {
+      EXPECT_EQ(match.body_part, "leg_" + match.garment_part.substr(6));
+      EXPECT_EQ(match.by, "name");
+    }
+  }
+}
+
 TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
   DRESSKIT_REQUIRE_DATA();
   const std::string d = test::data_dir();

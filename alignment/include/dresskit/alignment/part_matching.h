@@ -44,6 +44,8 @@ struct MatchingResult {
   std::vector<std::string> unmatched_garment_parts, unmatched_body_parts;
 };
 
+/// By name: a garment part matches the body part of the same name, and a skirt's halves
+/// (skirt_left, skirt_right) the legs (leg_left, leg_right); the rest by descriptors.
 MatchingResult match_parts(const std::vector<PartDescriptor>& garment,
                            const std::vector<PartDescriptor>& body,
                            const MatchingOptions& options = {});

@@ -2,6 +2,7 @@
 // Label clean-up on the vertex graph (pure kernels): one connected patch per label, smooth
 // boundaries.
 #include <Eigen/Core>
+#include <vector>
 
 #include "dresskit/segmentation/graph.h"
 
@@ -42,16 +43,39 @@ int refine_boundaries_random_walker(const MeshGraph& graph, const Adjacency& adj
                                     const Eigen::MatrixX3d& V, double band,
                                     Eigen::VectorXi& labels);
 
-/// Reshapes the cuts between a hub (the part touching every other) and its limbs along isolines
-/// of harmonic fields: seeds are each part's far end (vertices at least `tip_fraction` of the
-/// part's depth from its boundary: a limb's tip, the hub's core), the random walker gives each
-/// vertex the probability u_l of reaching limb l's tip first, and a vertex joins the limb with the
-/// largest u_l / c_l ≥ 1, where c_l is the mean of u_l on limb l's current cut, else the hub. Each
-/// cut keeps its mean level but follows the field: it leans where the limbs meet (lower between
-/// two legs than at the outer hip). Components that are no star are left alone. Returns the number
-/// of vertices relabelled.
+/// Reshapes the cuts between a hub (the part touching every other; of several, the one sharing the
+/// most affinity with the others) and its limbs along isolines of harmonic fields: seeds are each
+/// part's far end (vertices at least `tip_fraction` of the part's depth from its boundary: a limb's
+/// tip, the hub's core), the random walker gives each vertex the probability u_l of reaching limb
+/// l's tip first, and a vertex joins the limb with the largest u_l / c_l ≥ 1, else the hub. c_l is
+/// the mean of u_l on limb l's current cut, except for two limbs that touch each other (trouser
+/// legs at the crotch): their c is the crotch's level, the largest min(u_a, u_b) over the
+/// vertices, so that both legs start at the crotch. Each cut follows the field: it leans where the
+/// limbs meet (lower between two legs than at the outer hip). Components that are no star are left
+/// alone. Returns the number of vertices relabelled.
+///
+/// With a mirror map (mirror[v] = the vertex at v's mirror image, −1 for none: mirror_vertices),
+/// the decision is made mirror-symmetric: each limb's field is averaged with its mirror limb's
+/// field at the mirror vertex, and the two levels with each other (the mirror limb of l: the label
+/// that most mirror images of l's vertices carry). A symmetric garment then gets symmetric cuts,
+/// whatever asymmetry k-means left in the cuts before.
 int reshape_limb_cuts(const MeshGraph& graph, const Adjacency& adjacency, double tip_fraction,
-                      Eigen::VectorXi& labels);
+                      Eigen::VectorXi& labels, const std::vector<int>& mirror = {});
+
+/// Mirror symmetry across the plane through the area centroid of `vertices` with normal `normal`:
+/// returns #V entries, mirror[v] = the vertex nearest to v's mirror image when it lies within
+/// `tolerance` [m], else −1 (and −1 for vertices not listed); empty when fewer than `share` of the
+/// vertices have a mirror vertex (the component is not symmetric).
+std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorXd& vertex_area,
+                                 const std::vector<int>& vertices, const Eigen::Vector3d& normal,
+                                 double tolerance, double share = 0.9);
+
+/// For each label (0..max): its depth (the largest geodesic distance, within the label, from its
+/// boundary with other labels) divided by the radius of that boundary (the mean distance of the
+/// boundary vertices from their centroid): a limb, a sleeve or a head sticks out further than its
+/// junction is wide (≥ 1), a collar or a hem band does not. 0 for a label without a boundary.
+Eigen::VectorXd part_elongation(const MeshGraph& graph, const Adjacency& adjacency,
+                                const Eigen::MatrixX3d& V, const Eigen::VectorXi& labels);
 
 /// #F face labels: the label that at least two corners share, else the first corner's.
 Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels);

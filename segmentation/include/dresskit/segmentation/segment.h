@@ -21,6 +21,11 @@ struct SegmentationOptions {
   /// union of the components' spectra, between #components + 1 and max_parts.
   int parts = 0;
   int max_parts = 8;  ///< upper bound of the automatic choice
+  /// Automatic choice only: after the eigengap, a closed component (a body, no boundary edge) takes
+  /// one more part while the result stays a star (a hub and limbs) with one more limb that sticks
+  /// out at least as far as its junction is wide (part_elongation ≥ 1); this separates a body's
+  /// head, which the eigengap leaves with the torso. Garments are left to the eigengap.
+  bool grow_limbs = true;
   AffinityOptions affinity;
   /// Boundary vertices of one component closer than this many mean edge lengths, and more than six
   /// edges apart, are joined (bridge_boundary_gaps: a blouse's open front); 0 = off.
@@ -40,6 +45,17 @@ struct SegmentationOptions {
   /// Limb cuts reshaped along isolines of the harmonic field from each limb's tip (vertices beyond
   /// this fraction of the limb's depth) to the hub's core (reshape_limb_cuts); 0 = off.
   double limb_tip_fraction = 0.95;
+  /// Symmetric cuts: when at least 90 % of a component's vertices have a vertex within this many
+  /// mean edge lengths of their mirror image across the sagittal plane (normal: left, through the
+  /// component's area centroid), the limb cuts are made mirror-symmetric (reshape_limb_cuts with
+  /// mirror_vertices); 0 = off.
+  double symmetry_tolerance = 0.5;
+  /// A component that is a tube with two openings, the lower one at least as wide as the upper one
+  /// (a skirt: detect_skirt), is cut by its own geometry into a waist band and left and right
+  /// halves (split_skirt, names skirt_waist, skirt_left, skirt_right) instead of by the spectrum:
+  /// it takes three parts of the total, when the given number leaves the other components at least
+  /// one each. false = a skirt is one part `skirt` (or whatever the spectrum gives it).
+  bool split_skirts = true;
   /// Up and forward (facing) directions of the character; a zero vector = estimate from the mesh
   /// (up: area-weighted PCA; forward: the feet, else the PCA axis of least spread, sign +Z).
   Eigen::Vector3d up = Eigen::Vector3d::Zero();
@@ -57,7 +73,8 @@ struct AxesEstimate {
 };
 
 struct NamedPart {
-  std::string name;  ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt, part_N
+  std::string name;         ///< head, torso, arm_left, …, body, sleeve_left, leg_left, skirt,
+                            ///< skirt_waist, skirt_left, part_N
   double confidence = 0.0;  ///< 0–1: how clearly the geometry supports the name
   int component = 0;        ///< connected component the part lies in
   int vertices = 0;
@@ -77,7 +94,8 @@ struct SegmentationResult {
   int parts_chosen =
       0;  ///< parts in the result (the number asked for unless a cluster came out empty)
   bool parts_automatic = false;
-  int components = 0;  ///< connected components with faces
+  int limbs_added = 0;  ///< parts added after the eigengap's choice (grow_limbs)
+  int components = 0;   ///< connected components with faces
   std::vector<int> parts_per_component;
   int isolated_vertices = 0;  ///< vertices without a face (label −1)
   int bridged_edges = 0;      ///< edges added across boundary gaps
@@ -91,6 +109,10 @@ struct SegmentationResult {
   int relabelled_vertices = 0;    ///< vertices changed by the clean-up (candidates without merging)
   int refined_vertices =
       0;  ///< vertices moved by the boundary refinement (random walker, isolines)
+  /// Components cut as skirts (split_skirts), and where each one's waist band ends, as a fraction
+  /// of the skirt's length from the waist.
+  std::vector<int> skirt_components;
+  std::vector<double> skirt_band_fraction;
   AxesEstimate axes;
   SegmentationTimings seconds;
 
