@@ -216,7 +216,9 @@ TEST_P(MakeHumanOutfit, TopAndBottomMeanIou) {
         << (is_top ? "top" : "bottom");
     // Symmetric garments get symmetric cuts (docs/segmentation.md, "Symmetric cuts"): the male
     // trousers' legs (mirror-symmetric within half an edge) match the truth equally well.
-    if (param.key == "male_casualsuit02" && !is_top) EXPECT_NEAR(cmp.iou[3], cmp.iou[4], 0.02);
+    if (param.key == "male_casualsuit02" && !is_top) {
+      EXPECT_NEAR(cmp.iou[3], cmp.iou[4], 0.02);
+    }
   }
   // A skirt is cut in its own frame: with estimated axes (forward 0.15° off +Z) the same cut.
   if (!r.skirt_components.empty()) {
