@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -149,12 +150,18 @@ int main(int argc, char** argv) {
 
   // 3. The same affinity for scikit-learn, and plain spectral clustering (no clean-up, no merging).
   if (!export_dir.empty()) {
+    std::filesystem::create_directories(export_dir);
     const MeshGraph g = build_mesh_graph(mesh.V, mesh.F);
     std::vector<int> index;
     write_matrix_market(export_dir + "/gc_affinity.mtx", g, index);
     SegmentationOptions plain = body_options();
     plain.cleanup = false;
     plain.over_segmentation = 0;
+    plain.boundary_band = 0.0;  // eigen + k-means only: none of the boundary steps
+    plain.limb_tip_fraction = 0.0;
+    plain.symmetry_tolerance = 0.0;
+    plain.split_skirts = false;
+    plain.grow_limbs = false;
     std::vector<double> t;
     SegmentationResult r;
     for (int k = 0; k < reps; ++k) {
