@@ -142,6 +142,26 @@ TEST(Cli, DemoWritesTheSceneAndAReport) {
   // The GLB reads back with the same triangles.
   EXPECT_EQ(load_mesh(dir.file("demo/mannequin.glb")).num_faces(),
             report["meshes"]["mannequin"]["faces"].get<int>());
+  // Dressed: trousers and t-shirt settled on the mannequin, outside it and not crossing.
+  const auto& dressing = report["dressing"];
+  EXPECT_EQ(report["stages_run"].back(), "simulation");
+  EXPECT_EQ(dressing["stopped_reason"], "duration reached");
+  EXPECT_EQ(dressing["intersections"]["at_start"], 0);
+  EXPECT_EQ(dressing["intersections"]["at_end"], 0);
+  EXPECT_EQ(dressing["particles_inside_body_at_end"], 0);
+  EXPECT_LT(dressing["max_strain"].get<double>(), 0.15);
+  const TriangleMesh dressed = load_mesh(dir.file("demo/dressed.ply"));
+  EXPECT_EQ(dressed.num_vertices(), report["meshes"]["mannequin"]["vertices"].get<int>() +
+                                        report["meshes"]["outfit"]["vertices"].get<int>());
+  EXPECT_EQ(report["meshes"]["outfit"]["boundary_loops"], 7);  // trousers 3, t-shirt 4
+  // The outfit moved: it settled (the t-shirt sinks onto the shoulders).
+  const TriangleMesh tshirt = load_mesh(dir.file("demo/tshirt.obj"));
+  const TriangleMesh outfit = load_mesh(dir.file("demo/outfit.obj"));
+  EXPECT_LT(outfit.V.col(1).maxCoeff(), tshirt.V.col(1).maxCoeff() + 0.008);
+  // A bad value: one line, exit 2, nothing written.
+  const CliRun bad = run(dir, "demo -o " + dir.file("bad") + " --dress-seconds -1");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad")));
 }
 
 TEST(Cli, SimulateWritesResultFramesAndReport) {

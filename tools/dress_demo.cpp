@@ -1,0 +1,118 @@
+#include "dress_demo.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/mesh_distance.h"
+#include "dresskit/cloth/simulator.h"
+#include "dresskit/mesh/errors.h"
+
+namespace dresskit::cli {
+namespace {
+
+/// Appends b to a (vertices, faces, labels), naming b's labels prefix + its own names.
+void append(TriangleMesh& a, const TriangleMesh& b, const std::string& prefix) {
+  const Eigen::Index nv = a.V.rows(), nf = a.F.rows();
+  const int first_label = static_cast<int>(a.label_names.size());
+  a.V.conservativeResize(nv + b.V.rows(), 3);
+  a.V.bottomRows(b.V.rows()) = b.V;
+  a.F.conservativeResize(nf + b.F.rows(), 3);
+  a.F.bottomRows(b.F.rows()) = b.F.array() + static_cast<int>(nv);
+  a.labels.conservativeResize(nv + b.V.rows());
+  for (Eigen::Index i = 0; i < b.V.rows(); ++i)
+    a.labels(nv + i) =
+        b.labels.size() == b.V.rows() && b.labels(i) >= 0 ? first_label + b.labels(i) : -1;
+  for (const std::string& name : b.label_names) a.label_names.push_back(prefix + name);
+}
+
+}  // namespace
+
+DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
+                           const GarmentOptions& garments, const DressDemoOptions& options) {
+  if (!(options.seconds > 0.0)) throw InputError("dress seconds: must be positive");
+  if (!(options.dt > 0.0)) throw InputError("dress dt: must be positive");
+  const auto start = std::chrono::steady_clock::now();
+  // The t-shirt is worn over the trousers: a little more ease, so that the two start apart where
+  // they overlap at the waist.
+  GarmentOptions over = garments;
+  over.ease += options.over_ease;
+  const TriangleMesh trousers = make_garment(shape, GarmentKind::trousers, garments);
+  const TriangleMesh tshirt = make_garment(shape, GarmentKind::tshirt, over);
+
+  SimulationOptions sim_options;
+  sim_options.integrator = Integrator::implicit_euler;
+  sim_options.dt = options.dt;
+  sim_options.air_damping = 0.5;
+  sim_options.strain_limiting = true;
+  sim_options.strain_limit = 0.1;
+  sim_options.self_collision = true;
+  auto distance = std::make_shared<const MeshDistance>(body);
+  sim_options.colliders.push_back(Collider::mesh(distance, 0.5));
+  const ClothModel model = stack_layers({build_cloth(trousers, fabric_by_name("11oz-black-denim")),
+                                         build_cloth(tshirt, fabric_by_name("gray-interlock"))},
+                                        0.003);
+  ClothSimulator sim(model, sim_options);
+  // Trousers stay up by their waistband (held as by a belt); the t-shirt hangs from the shoulders.
+  const double top = trousers.V.col(1).maxCoeff();
+  std::vector<int> belt;
+  for (Eigen::Index i = 0; i < trousers.V.rows(); ++i)
+    if (trousers.V(i, 1) >= top - options.waistband) belt.push_back(static_cast<int>(i));
+  sim.set_pinned(belt);
+
+  const int at_start = sim.intersections();
+  const int steps = static_cast<int>(std::ceil(options.seconds / options.dt - 1e-9));
+  DressDemoResult result;
+  std::string stopped = "duration reached";
+  int done = 0;
+  for (; done < steps; ++done) {
+    const StepResult r = sim.step();
+    if (!r.ok) {
+      result.ok = false;
+      stopped = r.failure;
+      break;
+    }
+  }
+  const Eigen::MatrixX3d& x = sim.positions();
+  int inside = 0;
+  Eigen::Vector3d n;
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    inside += distance->distance(x.row(i).transpose(), &n) < 0.0;
+
+  TriangleMesh worn_trousers = trousers, worn_tshirt = tshirt;
+  worn_trousers.V = x.topRows(trousers.V.rows());
+  worn_tshirt.V = x.bottomRows(tshirt.V.rows());
+  auto empty = [] {
+    TriangleMesh m;
+    m.V.resize(0, 3);
+    m.F.resize(0, 3);
+    return m;
+  };
+  result.outfit = empty();
+  append(result.outfit, worn_trousers, "trousers_");
+  append(result.outfit, worn_tshirt, "tshirt_");
+  result.dressed = empty();
+  append(result.dressed, body, "");
+  append(result.dressed, result.outfit, "");
+  result.report = {
+      {"garments",
+       {"trousers (11oz-black-denim, waistband held)", "tshirt (gray-interlock, worn over)"}},
+      {"particles", x.rows()},
+      {"integrator", to_string(sim_options.integrator)},
+      {"dt", options.dt},
+      {"steps", done},
+      {"simulated_seconds", done * options.dt},
+      {"stopped_reason", stopped},
+      {"max_strain", sim.max_strain()},
+      {"mean_strain", sim.mean_strain()},
+      {"intersections", {{"at_start", at_start}, {"at_end", sim.intersections()}}},
+      {"particles_inside_body_at_end", inside},
+      {"seconds", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count()}};
+  return result;
+}
+
+}  // namespace dresskit::cli
