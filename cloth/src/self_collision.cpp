@@ -525,6 +525,14 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   return done(result);
 }
 
+std::vector<std::array<int, 3>> SelfCollision::listed_pairs() const {
+  std::vector<std::array<int, 3>> out;
+  out.reserve(pairs_.size());
+  for (const Pair& p : pairs_)
+    out.push_back({p.kind, p.kind ? std::min(p.a, p.b) : p.a, p.kind ? std::max(p.a, p.b) : p.b});
+  return out;
+}
+
 int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
                         const std::vector<int>& joined) {
   if (F.rows() == 0) return 0;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <set>
 
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/geometry.h"
@@ -123,6 +124,70 @@ ClothModel sheet(int n, double height, double size = 0.5) {
 // A sheet falling fast onto a pinned one: without cloth–cloth collisions it passes through (two
 // flat sheets passing within one step never show a crossing at a step's end: the sheet is simply
 // found below), with them it never crosses and comes to rest on it about a thickness above.
+// The candidate list after an update for a few particles that moved (not made anew) holds every
+// primitive pair a pass needs: all non-neighbouring vertex–face and edge–edge pairs whose swept
+// boxes (x0 → x1) come within the thickness, found here by brute force over all pairs.
+TEST(SelfCollision, UpdatedCandidateListHoldsEveryPairItNeeds) {
+  // Two sheets 1.5 mm apart (within twice the 1 mm thickness), 12×12 particles each.
+  const TriangleMesh a = make_grid({0.2, 0.2}, {12, 12}, {0, 0, 0}, {0, 1, 0});
+  const TriangleMesh b = make_grid({0.2, 0.2}, {12, 12}, {0.004, 0.0015, 0.003}, {0, 1, 0});
+  const int n = static_cast<int>(a.V.rows());
+  Eigen::MatrixX3d x0(2 * n, 3);
+  x0 << a.V, b.V;
+  Eigen::MatrixX3i F(a.F.rows() + b.F.rows(), 3);
+  F << a.F, (b.F.array() + n).matrix();
+  SelfCollision collisions(F, 2 * n, {});
+  const double h = collisions.options().thickness;
+  const Eigen::VectorXd inverse_mass = Eigen::VectorXd::Ones(2 * n);
+  // First call: the list is made; its corrections are kept as the new x1.
+  Eigen::MatrixX3d x1 = x0;
+  x1.col(1).array() -= 0.0002;  // the whole system falls a little
+  collisions.resolve(x0, x1, inverse_mass);
+  // Second call in the same step: a few particles of the upper sheet moved by 3 h sideways and
+  // down, as a collider pass would move them — the list is updated for them only.
+  std::mt19937 random(7);
+  for (int k = 0; k < 5; ++k) {
+    const int p = n + static_cast<int>(random() % n);
+    x1.row(p) += Eigen::RowVector3d(3 * h, -0.5 * h, 2 * h);
+  }
+  const Eigen::MatrixX3d proposed = x1;
+  collisions.resolve(x0, x1, inverse_mass);
+  const auto listed = collisions.listed_pairs();
+  ASSERT_FALSE(listed.empty());
+  std::set<std::array<int, 3>> have(listed.begin(), listed.end());
+  // Brute force at the positions the passes saw (x1 as proposed and as corrected): swept boxes.
+  const EdgeList edges = triangle_edges(F);
+  auto box = [&](std::initializer_list<int> ps) {
+    Eigen::AlignedBox3d bx;
+    for (int p : ps) {
+      bx.extend(Eigen::Vector3d(x0.row(p).transpose()));
+      bx.extend(Eigen::Vector3d(proposed.row(p).transpose()));
+    }
+    return bx;
+  };
+  auto near = [&](const Eigen::AlignedBox3d& u, const Eigen::AlignedBox3d& v) {
+    return (u.min() - v.max()).maxCoeff() <= h && (v.min() - u.max()).maxCoeff() <= h;
+  };
+  int needed = 0, missing = 0;
+  for (int v = 0; v < 2 * n; ++v)
+    for (int f = 0; f < F.rows(); ++f) {
+      if (F(f, 0) == v || F(f, 1) == v || F(f, 2) == v) continue;
+      if (!near(box({v}), box({F(f, 0), F(f, 1), F(f, 2)}))) continue;
+      ++needed;
+      missing += !have.count({0, v, f});
+    }
+  for (std::size_t e1 = 0; e1 < edges.i.size(); ++e1)
+    for (std::size_t e2 = e1 + 1; e2 < edges.i.size(); ++e2) {
+      const int p = edges.i[e1], q = edges.j[e1], r = edges.i[e2], t = edges.j[e2];
+      if (p == r || p == t || q == r || q == t) continue;
+      if (!near(box({p, q}), box({r, t}))) continue;
+      ++needed;
+      missing += !have.count({1, static_cast<int>(e1), static_cast<int>(e2)});
+    }
+  EXPECT_GT(needed, 1000);  // the sheets overlap: many pairs are needed
+  EXPECT_EQ(missing, 0);
+}
+
 TEST(SelfCollision, FallingSheetRestsOnAPinnedSheetWithoutCrossing) {
   for (bool on : {false, true}) {
     SimulationOptions o;

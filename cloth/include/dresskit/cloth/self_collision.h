@@ -14,6 +14,7 @@
 // So a state that starts without intersections never gains one. A bounding volume hierarchy over
 // the triangles (refitted with swept boxes each pass) finds the candidate pairs.
 #include <Eigen/Core>
+#include <array>
 #include <vector>
 
 #include "dresskit/cloth/triangle_bvh.h"
@@ -63,6 +64,10 @@ class SelfCollision {
                               const Eigen::VectorXd& inverse_mass);
 
   const SelfCollisionOptions& options() const { return options_; }
+  /// The candidate list of the last resolve(), each pair as (kind, a, b): 0 = vertex a – face b,
+  /// 1 = edge a – edge b with a < b (edges numbered as triangle_edges(faces) numbers them). For
+  /// tests.
+  std::vector<std::array<int, 3>> listed_pairs() const;
   bool empty() const { return faces_.rows() == 0; }
   const std::vector<int>& joined() const { return rep_; }
 
