@@ -58,8 +58,10 @@ int connected_components(const MeshGraph& graph, Eigen::VectorXi& component);
 /// degree). Vertices labelled −1 are ignored, and so are edges to them.
 double normalized_cut(const MeshGraph& graph, const Eigen::VectorXi& labels);
 
-/// Number of boundary loops (connected runs of boundary edges) among the edges whose two endpoints
-/// satisfy `inside` (e.g. carry one label).
+/// Vertices of each boundary loop (connected run of boundary edges) among the edges whose two
+/// endpoints satisfy `inside` (e.g. carry one label), and their number.
+template <class Inside>
+std::vector<std::vector<int>> boundary_loops(const MeshGraph& graph, Inside inside);
 template <class Inside>
 int count_boundary_loops(const MeshGraph& graph, Inside inside);
 
@@ -74,7 +76,7 @@ Adjacency adjacency(const MeshGraph& graph);
 Eigen::VectorXd vertex_areas(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F);
 
 template <class Inside>
-int count_boundary_loops(const MeshGraph& graph, Inside inside) {
+std::vector<std::vector<int>> boundary_loops(const MeshGraph& graph, Inside inside) {
   std::vector<int> parent(graph.num_vertices, -1);  // −1: not on a boundary edge
   auto find = [&](int a) {
     while (parent[a] != a) a = parent[a] = parent[parent[a]];
@@ -87,9 +89,20 @@ int count_boundary_loops(const MeshGraph& graph, Inside inside) {
     const int a = find(graph.from(e)), b = find(graph.to(e));
     if (a != b) parent[a] = b;
   }
-  int loops = 0;
-  for (int v = 0; v < graph.num_vertices; ++v) loops += parent[v] == v;
+  std::vector<int> index(graph.num_vertices, -1);
+  std::vector<std::vector<int>> loops;
+  for (int v = 0; v < graph.num_vertices; ++v) {
+    if (parent[v] < 0) continue;
+    const int root = find(v);
+    if (index[root] < 0) index[root] = static_cast<int>(loops.size()), loops.emplace_back();
+    loops[index[root]].push_back(v);
+  }
   return loops;
+}
+
+template <class Inside>
+int count_boundary_loops(const MeshGraph& graph, Inside inside) {
+  return static_cast<int>(boundary_loops(graph, inside).size());
 }
 
 }  // namespace dresskit

@@ -11,11 +11,6 @@
 
 namespace dresskit {
 
-/// Vertices of each boundary loop (connected run of boundary edges) among the edges whose two
-/// endpoints satisfy `inside`.
-template <class Inside>
-std::vector<std::vector<int>> boundary_loops(const MeshGraph& graph, Inside inside);
-
 /// A skirt's own frame: the axis from the hem's centre to the waist's, and the character's left
 /// made perpendicular to it.
 struct SkirtFrame {
@@ -52,30 +47,5 @@ SkirtFrame detect_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V,
 void split_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V,
                  const Eigen::VectorXd& vertex_area, const std::vector<int>& vertices,
                  SkirtFrame& frame, Eigen::VectorXi& labels);
-
-template <class Inside>
-std::vector<std::vector<int>> boundary_loops(const MeshGraph& graph, Inside inside) {
-  std::vector<int> parent(graph.num_vertices, -1);  // −1: not on a boundary edge
-  auto find = [&](int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  for (int e = 0; e < graph.num_edges(); ++e) {
-    if (graph.faces(e) != 1 || !inside(graph.from(e)) || !inside(graph.to(e))) continue;
-    for (int v : {graph.from(e), graph.to(e)})
-      if (parent[v] < 0) parent[v] = v;
-    const int a = find(graph.from(e)), b = find(graph.to(e));
-    if (a != b) parent[a] = b;
-  }
-  std::vector<int> index(graph.num_vertices, -1);
-  std::vector<std::vector<int>> loops;
-  for (int v = 0; v < graph.num_vertices; ++v) {
-    if (parent[v] < 0) continue;
-    const int root = find(v);
-    if (index[root] < 0) index[root] = static_cast<int>(loops.size()), loops.emplace_back();
-    loops[index[root]].push_back(v);
-  }
-  return loops;
-}
 
 }  // namespace dresskit
