@@ -149,6 +149,18 @@ inline double law_energy(const LocalSpring& q, double strain) {
 }  // namespace
 
 /// Spring k's constants with the weight w.
+/// The largest squared move of a particle between two iterates (n particles, x y z interleaved) [m²].
+double largest_move2(const double* x, const double* previous, int n) {
+  double moved2 = 0.0;
+  for (int v = 0; v < n; ++v) {
+    const double* a = x + 3 * v;
+    const double* b = previous + 3 * v;
+    moved2 = std::max(moved2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                  (a[2] - b[2]) * (a[2] - b[2]));
+  }
+  return moved2;
+}
+
 LocalSpring local_spring(const SpringSet& s, int k, double w) {
   const double rise = std::max(s.k_knee[k] - s.k_rest[k], 0.0);
   return {s.i[k],
@@ -438,13 +450,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     X += rhs;
     if (options_.projective_collisions && !options_.colliders.empty())
       push_out_in_iterations(X, contacts);
-    double moved2 = 0.0;
-    for (int v = 0; v < n; ++v) {
-      const double* a = X.data() + 3 * v;
-      const double* b = previous.data() + 3 * v;
-      moved2 = std::max(moved2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                    (a[2] - b[2]) * (a[2] - b[2]));
-    }
+    const double moved2 = largest_move2(X.data(), previous.data(), n);
     iterations = it + 1;
     if (std::sqrt(moved2) < options_.newton_tolerance) break;
   }
@@ -493,13 +499,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     }
     if (options_.projective_collisions && !options_.colliders.empty())
       push_out_in_iterations(X, contacts);
-    double moved2 = 0.0;
-    for (int v = 0; v < n; ++v) {
-      const double* a = X.data() + 3 * v;
-      const double* b = previous.data() + 3 * v;
-      moved2 = std::max(moved2, (a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                                    (a[2] - b[2]) * (a[2] - b[2]));
-    }
+    const double moved2 = largest_move2(X.data(), previous.data(), n);
     const double moved = std::sqrt(moved2);
     iterations = it + 1;
     if (moved < options_.newton_tolerance) break;
