@@ -191,16 +191,18 @@ int run_demo(const std::string& dir, const MannequinOptions& body_options,
     auto t0 = Clock::now();
     const TriangleMesh mannequin = make_mannequin(body);
     write(mannequin, "mannequin", std::chrono::duration<double>(Clock::now() - t0).count());
+    TriangleMesh trousers;
     for (GarmentKind kind : all_garment_kinds()) {
       t0 = Clock::now();
-      const TriangleMesh garment = make_garment(body, kind, garment_options);
+      TriangleMesh garment = make_garment(body, kind, garment_options);
       write(garment, to_string(kind), std::chrono::duration<double>(Clock::now() - t0).count());
+      if (kind == GarmentKind::trousers) trousers = std::move(garment);
     }
     int code = 0;
     if (dress) {
       std::cout << "dressing the mannequin: trousers and t-shirt, " << dress_options.seconds
                 << " s simulated ...\n";
-      cli::DressDemoResult d = cli::dress_demo(mannequin, body, garment_options, dress_options);
+      cli::DressDemoResult d = cli::dress_demo(mannequin, body, trousers, garment_options, dress_options);
       write(d.outfit, "outfit", d.report["seconds"].get<double>());
       write(d.dressed, "dressed", d.report["seconds"].get<double>());
       report["dressing"] = d.report;

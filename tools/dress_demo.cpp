@@ -33,7 +33,8 @@ void append(TriangleMesh& a, const TriangleMesh& b, const std::string& prefix) {
 }  // namespace
 
 DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
-                           const GarmentOptions& garments, const DressDemoOptions& options) {
+                           const TriangleMesh& trousers, const GarmentOptions& garments,
+                           const DressDemoOptions& options) {
   if (!(options.seconds > 0.0)) throw InputError("dress seconds: must be positive");
   if (!(options.dt > 0.0)) throw InputError("dress dt: must be positive");
   const auto start = std::chrono::steady_clock::now();
@@ -41,7 +42,6 @@ DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
   // they overlap at the waist.
   GarmentOptions over = garments;
   over.ease += options.over_ease;
-  const TriangleMesh trousers = make_garment(shape, GarmentKind::trousers, garments);
   const TriangleMesh tshirt = make_garment(shape, GarmentKind::tshirt, over);
 
   SimulationOptions sim_options;

@@ -24,9 +24,10 @@ struct DressDemoResult {
   bool ok = true;         ///< false: a step failed; the outfit is the last good state
 };
 
-/// Dresses `body` (the mannequin made from `shape`) in the trousers and a t-shirt made with
-/// `garments` (the t-shirt with over_ease more ease). Throws InputError for options out of range.
+/// Dresses `body` (the mannequin made from `shape`) in `trousers` (made on it with `garments`) and
+/// a t-shirt made with over_ease more ease. Throws InputError for options out of range.
 DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
-                           const GarmentOptions& garments, const DressDemoOptions& options = {});
+                           const TriangleMesh& trousers, const GarmentOptions& garments,
+                           const DressDemoOptions& options = {});
 
 }  // namespace dresskit::cli
