@@ -408,20 +408,59 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
 
   if (options_.projective_lbfgs_history > 0) return projective_lbfgs(target, air_base, wind, x0, X);
   RowX3 &rhs = P.rhs, &previous = P.previous;
-  // Collisions inside the iterations: particles within a collider's margin are pushed out to it.
-  auto push_out_in_iterations = [&](RowX3& Xc, Contacts& found) {
+  // Contacts inside the iterations (projective_collisions). A particle in contact carries a normal
+  // force f n in the global step's right-hand side. After each global step its penetration p below
+  // the margin raises f by κ p and its gap g above the margin lowers f by κ g (never below 0), and
+  // the particle is pushed out to the margin. κ is the particle's inertia term m/h² (+ air): the
+  // force that moves it by one metre when its neighbours move with it, as a whole patch resting on
+  // a collider does. (Its row's diagonal in the global matrix, springs included, moves a lone
+  // particle but overshoots a patch: the sphere scene's cloth was thrown 9 m up.) The forces are
+  // kept from step to step: a cloth at rest on a collider starts every step with the force that
+  // holds it, so the global step no longer pulls the supported particles into the collider for the
+  // pass after the step to push them back out (on the cloth-onto-sphere scene at 1/60 s that had
+  // sunk the top of the cloth 1.8 cm each step, and the push back stretched the strain-limited
+  // springs around the sphere's top by 6 %).
+  const bool in_contact = options_.projective_collisions && !options_.colliders.empty();
+  ContactForces& cf = contact_forces_;
+  if (in_contact && cf.force.size() != static_cast<std::size_t>(n)) {
+    cf.force.assign(static_cast<std::size_t>(n), 0.0);
+    cf.collider.assign(static_cast<std::size_t>(n), -1);
+    cf.normal.assign(static_cast<std::size_t>(n), Eigen::Vector3d::Zero());
+  }
+  auto add_contact_forces = [&](double* R) {
+    for (int v = 0; v < n; ++v) {
+      const double f = cf.force[v];
+      if (f == 0.0) continue;
+      const Eigen::Vector3d& nv = cf.normal[v];
+      R[3 * v] += f * nv[0], R[3 * v + 1] += f * nv[1], R[3 * v + 2] += f * nv[2];
+    }
+  };
+  auto contact_pass = [&](RowX3& Xc, Contacts& found) {
     found.clear();
+    const int colliders = static_cast<int>(options_.colliders.size());
     for (int v = 0; v < n; ++v) {
       if (pinned_[v]) continue;
       const double margin = options_.collision_margin + model_.layer_offset[model_.layer[v]];
-      for (int ci = 0; ci < static_cast<int>(options_.colliders.size()); ++ci) {
-        Eigen::Vector3d normal;
-        const Eigen::Vector3d p = Xc.row(v).transpose();
-        const double d = options_.colliders[ci].distance(p, &normal);
-        if (d >= margin) continue;
-        Xc.row(v) += (margin - d) * normal.transpose();
-        found.add(v, ci, normal, margin - d);
+      const Eigen::Vector3d p = Xc.row(v).transpose();
+      int nearest = -1;
+      double gap = HUGE_VAL;
+      Eigen::Vector3d normal;
+      for (int ci = 0; ci < colliders; ++ci) {
+        Eigen::Vector3d nc;
+        const double g = options_.colliders[ci].distance(p, &nc) - margin;
+        if (g < gap) gap = g, nearest = ci, normal = nc;
       }
+      double& f = cf.force[v];
+      if (nearest != cf.collider[v]) f = 0.0;
+      if (gap < 0.0) {
+        f += P.inertia[v] * -gap;
+        Xc.row(v) -= gap * normal.transpose();
+      } else if (f > 0.0) {
+        f = std::max(0.0, f - P.inertia[v] * gap);
+      }
+      cf.collider[v] = f > 0.0 ? nearest : -1;
+      cf.normal[v] = normal;
+      if (f > 0.0 || gap < 0.0) found.add(v, nearest, normal, std::max(0.0, -gap));
     }
   };
   const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
@@ -444,12 +483,12 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     else
       local_step<false, false, true>(P.stretch, x, rest, n, beyond, R);
     local_step<true, false, true>(P.bend, x, rest, n, beyond, R);
+    if (in_contact) add_contact_forces(R);
     for (int v : P.pinned_list) R[3 * v] = R[3 * v + 1] = R[3 * v + 2] = 0.0;
     previous = X;
     P.single.solve_in_place(R);
     X += rhs;
-    if (options_.projective_collisions && !options_.colliders.empty())
-      push_out_in_iterations(X, contacts);
+    if (in_contact) contact_pass(X, contacts);
     const double moved2 = largest_move2(X.data(), previous.data(), n);
     iterations = it + 1;
     if (std::sqrt(moved2) < options_.newton_tolerance) break;
@@ -474,6 +513,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
           model_.seams.stiffness[k] * stitch_target(model_.seams, k, gap).transpose();
       for (int p = 0; p < 3; ++p) rhs.row(idx[p]) += sw[p] * d;
     }
+    if (in_contact) add_contact_forces(R);
     for (int v : P.pinned_list)
       R[3 * v] = x[3 * v], R[3 * v + 1] = x[3 * v + 1], R[3 * v + 2] = x[3 * v + 2];
     previous = X;
@@ -497,8 +537,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
       P.full.solve_in_place(R);
       X = rhs;
     }
-    if (options_.projective_collisions && !options_.colliders.empty())
-      push_out_in_iterations(X, contacts);
+    if (in_contact) contact_pass(X, contacts);
     const double moved2 = largest_move2(X.data(), previous.data(), n);
     const double moved = std::sqrt(moved2);
     iterations = it + 1;
@@ -762,13 +801,14 @@ void ClothSimulator::step_projective(StepResult& r) {
   for (int v = 0; v < n; ++v)
     if (pinned_[v]) x_.row(v) = x0.row(v), v_.row(v).setZero();
   // Contacts: no inward speed; static or kinetic friction on the sliding part (as collide()). The
-  // normal speed the contact removed is the last pass's push over h (at convergence the push the
-  // contact force gives: h g_n for a particle resting under gravity) plus any inward speed left.
+  // normal speed the contact removed is the contact force's impulse per mass (h g_n for a particle
+  // resting under gravity), the last pass's push over h and any inward speed left.
   for (std::size_t k = 0; k < contacts.particle.size(); ++k) {
     const Collider& col = options_.colliders[contacts.collider[k]];
     const Eigen::Vector3d& nk = contacts.normal[k];
     Eigen::Vector3d vel = v_.row(contacts.particle[k]).transpose();
-    const double vn = vel.dot(nk), removed = std::max(-vn, 0.0) + contacts.depth[k] / h;
+    const double vn = vel.dot(nk), removed = std::max(-vn, 0.0) + contacts.depth[k] / h +
+                              contact_forces_.force[contacts.particle[k]] * h / model_.mass(contacts.particle[k]);
     if (vn < 0.0) vel -= vn * nk;
     const Eigen::Vector3d vt = vel - vel.dot(nk) * nk;
     const double speed = vt.norm(),

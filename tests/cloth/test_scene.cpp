@@ -88,13 +88,13 @@ TEST(ClothScene, ProjectiveDynamicsKeys) {
   const std::string grid = R"("grid": {"size": [1, 1], "resolution": [4, 4]})";
   const ClothScene defaults = load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}})"));
   EXPECT_EQ(defaults.simulation.time_scheme, TimeScheme::backward_euler);
-  EXPECT_FALSE(defaults.simulation.projective_collisions);
+  EXPECT_TRUE(defaults.simulation.projective_collisions);
   const ClothScene s =
       load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation": {"integrator":
-      "projective", "time_scheme": "bdf2", "projective_collisions": true}})"));
+      "projective", "time_scheme": "bdf2", "projective_collisions": false}})"));
   EXPECT_EQ(s.simulation.integrator, Integrator::projective);
   EXPECT_EQ(s.simulation.time_scheme, TimeScheme::bdf2);
-  EXPECT_TRUE(s.simulation.projective_collisions);
+  EXPECT_FALSE(s.simulation.projective_collisions);
   EXPECT_FALSE(defaults.simulation.projective_adaptive_weights);
   EXPECT_EQ(defaults.simulation.projective_lbfgs_history, 0);
   const ClothScene t =

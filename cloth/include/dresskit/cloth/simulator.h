@@ -78,11 +78,13 @@ struct SimulationOptions {
   /// the memory traffic; the double-precision residual keeps the result accurate). false: a
   /// double-precision factor solves for the positions directly.
   bool projective_single_precision = true;
-  /// Projective dynamics: push particles out of the colliders after every global step, so that the
-  /// springs are solved around the contacts within the step (otherwise only after it). Off by
-  /// default: on the cloth-onto-sphere scene it lowered the largest strain at dt 1/60 but fought the
-  /// strain limiter at 1/120 and made the run slower (docs/results.md).
-  bool projective_collisions = false;
+  /// Projective dynamics: contacts inside the iterations. Each particle in contact carries a normal
+  /// contact force in the global step's right-hand side, raised by the particle's penetration after
+  /// every global step (and lowered by its gap once it lifts off), kept from step to step; the
+  /// particle is also pushed out to the margin. So the springs are solved around the contacts
+  /// within the step instead of being pulled into the collider and pushed back after it
+  /// (docs/cloth.md). false: contacts only in the collider pass after the step.
+  bool projective_collisions = true;
   /// Projective dynamics: 0 = local/global iterations; m > 0 = L-BFGS with the last m pairs and the
   /// projective matrix as initial Hessian, with a line search (Liu et al. 2017; docs/cloth.md).
   int projective_lbfgs_history = 0;
@@ -163,6 +165,9 @@ class ClothSimulator {
   const std::vector<char>& sewn() const { return sewn_; }
   /// Edge–triangle crossings of the cloth at its current positions (seam neighbours excluded).
   int intersections() const;
+  /// Projective dynamics with projective_collisions: each particle's normal contact force at the
+  /// end of the last step [N] (empty before the first step or without colliders).
+  const std::vector<double>& contact_forces() const { return contact_forces_.force; }
 
   StepResult step();
   /// Steps until the elastic energy and the static residual force settle (a static drape), the
@@ -206,7 +211,12 @@ class ClothSimulator {
                     StepResult& r);
   double incremental_potential(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& v0) const;
-  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r);
+  /// all: look at every spring; false: only those with an end moved since the last call ended with
+  /// every spring within its bounds.
+  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all);
+  std::vector<char> limit_active_, limit_next_;  ///< limit_strain's active sets (work arrays)
+  Eigen::MatrixX3d limit_end_;   ///< the positions at the end of the last limit_strain
+  bool limit_converged_ = false;  ///< ... and whether every spring was then within its bounds
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
   /// Returns the particle's distance from the collider where it ends [m].
   double push_out(const Collider& c, double margin, int i);
@@ -266,6 +276,13 @@ class ClothSimulator {
   /// step size or the pins change (projective.cpp).
   struct Projective;
   std::shared_ptr<Projective> projective_;
+  /// Projective dynamics' contacts (projective_collisions): per particle the normal contact force
+  /// [N] (0: none), its collider (−1: none) and its normal at the last pass, kept between steps.
+  struct ContactForces {
+    std::vector<double> force;
+    std::vector<int> collider;
+    std::vector<Eigen::Vector3d> normal;
+  } contact_forces_;
   /// BDF2's history: the state at the start of the step before (x_{n−1}, v_{n−1}) and at the start of
   /// the last step tried, with their times; cleared by set_state.
   struct History {
