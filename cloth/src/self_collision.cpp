@@ -110,28 +110,35 @@ void SelfCollision::indices(const Pair& p, int idx[4]) const {
   }
 }
 
-// Candidates from one traversal of the tree against itself: for each pair of distinct triangles
-// whose swept boxes (padded by half the distance each) overlap, the particles and edges that the
-// one owns against the other triangle and its owned edges. Every primitive has one owning triangle,
-// and a primitive's box lies inside its owner's, so every pair comes exactly once. (Measured
-// against a box query per particle and per edge: that was 23 % of a sewn-tube run, most of it node
-// visits.)
-void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double pad,
+// The candidate list is made for each particle's listed box: the box of its path x0 → x1 when it
+// was last listed (lb_lo_, lb_hi_). It holds every pair of primitives whose listed boxes, padded
+// by the thickness h each, overlap: the pairs whose listed boxes are at most 2h apart. While each
+// particle's path stays within its listed box grown by h/2, every pair that is not listed stays
+// more than h apart on the way, so the list holds every pair that a pass needs (within h at x0, or
+// eta < h on the paths) — across the passes, the calls and the steps: a cloth at rest keeps its
+// list from step to step. A particle whose path leaves its box is stale: its box becomes its
+// current path's and its pairs are found again (update_candidates), or the whole list is made anew
+// (candidates) when many are.
+
+// The whole list from one traversal of the tree against itself: for each pair of distinct
+// triangles whose padded boxes overlap, the particles and edges that the one owns against the other
+// triangle and its owned edges. Every primitive has one owning triangle, and a primitive's box lies
+// inside its owner's, so every pair comes exactly once. (Measured against a box query per particle
+// and per edge: that was 23 % of a sewn-tube run, most of it node visits.)
+void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                                std::vector<Pair>& out) {
   out.clear();
+  const double h = options_.thickness;
+  lb_lo_ = x0.cwiseMin(x1);
+  lb_hi_ = x0.cwiseMax(x1);
   if (bvh_.empty()) bvh_ = TriangleBvh(x0, faces_);
-  bvh_.refit(x1, &x0, 0.5 * pad);
-  const int nv = static_cast<int>(x0.rows());
-  lo_.resize(nv, 3);
-  hi_.resize(nv, 3);
-  lo_ = x0.cwiseMin(x1).array() - 0.5 * pad;
-  hi_ = x0.cwiseMax(x1).array() + 0.5 * pad;
+  bvh_.refit(lb_hi_, &lb_lo_, h);
   auto overlap = [&](std::initializer_list<int> a, std::initializer_list<int> b) {
     for (int c = 0; c < 3; ++c) {
       double a_lo = 1e300, a_hi = -1e300, b_lo = 1e300, b_hi = -1e300;
-      for (int p : a) a_lo = std::min(a_lo, lo_(p, c)), a_hi = std::max(a_hi, hi_(p, c));
-      for (int p : b) b_lo = std::min(b_lo, lo_(p, c)), b_hi = std::max(b_hi, hi_(p, c));
-      if (a_lo > b_hi || b_lo > a_hi) return false;
+      for (int p : a) a_lo = std::min(a_lo, lb_lo_(p, c)), a_hi = std::max(a_hi, lb_hi_(p, c));
+      for (int p : b) b_lo = std::min(b_lo, lb_lo_(p, c)), b_hi = std::max(b_hi, lb_hi_(p, c));
+      if (a_lo > b_hi + 2.0 * h || b_lo > a_hi + 2.0 * h) return false;
     }
     return true;
   };
@@ -165,16 +172,13 @@ void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3
   for (Pair& p : out) p.d0 = closest(p, x0, w).norm();
 }
 
-// The list made anew for the particles flagged in stale_ only: their pairs are dropped and found
-// again at the current positions with boxes padded by 1.25 h each (2.5 h together: a stale
-// particle may move h/2 more before the next update and a particle that is not stale up to h from
-// where it is now, so every pair that can come within h before then is listed). Each primitive
-// pair comes once: a vertex's own query gives its vertex–triangle pairs, a face's query the
-// vertices that are not stale against it, an edge's query the edges that are not stale or have a
-// larger index.
+// The list brought up to date for the particles flagged in stale_: their listed boxes become their
+// current paths' boxes, their pairs are dropped and found again. Each primitive pair comes once: a
+// vertex's own query gives its vertex–triangle pairs, a face's query the vertices that are not
+// stale against it, an edge's query the edges that are not stale or have a larger index.
 void SelfCollision::update_candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
-                                      double h, std::vector<Pair>& out) {
-  const double pad = 1.25 * h;
+                                      std::vector<Pair>& out) {
+  const double h = options_.thickness;
   auto stale_pair = [&](const Pair& p) {
     int idx[4];
     indices(p, idx);
@@ -182,12 +186,19 @@ void SelfCollision::update_candidates(const Eigen::MatrixX3d& x0, const Eigen::M
   };
   out.erase(std::remove_if(out.begin(), out.end(), stale_pair), out.end());
   const std::size_t first_new = out.size();
-  bvh_.refit(x1, &x0, pad);
-  lo_ = x0.cwiseMin(x1).array() - pad;
-  hi_ = x0.cwiseMax(x1).array() + pad;
+  const int nv = static_cast<int>(x1.rows());
+  for (int p = 0; p < nv; ++p)
+    if (stale_[p]) {
+      lb_lo_.row(p) = x0.row(p).cwiseMin(x1.row(p));
+      lb_hi_.row(p) = x0.row(p).cwiseMax(x1.row(p));
+    }
+  bvh_.refit(lb_hi_, &lb_lo_, h);
+  // Boxes padded by h: two overlap when their listed boxes are at most 2h apart.
   auto box_of = [&](std::initializer_list<int> ps) {
     Eigen::AlignedBox3d b;
-    for (int p : ps) b.extend(Eigen::AlignedBox3d(lo_.row(p).transpose(), hi_.row(p).transpose()));
+    for (int p : ps)
+      b.extend(Eigen::AlignedBox3d(lb_lo_.row(p).transpose().array() - h,
+                                   lb_hi_.row(p).transpose().array() + h));
     return b;
   };
   auto overlap = [&](const Eigen::AlignedBox3d& a, std::initializer_list<int> ps) {
@@ -196,7 +207,6 @@ void SelfCollision::update_candidates(const Eigen::MatrixX3d& x0, const Eigen::M
   std::vector<char> face_flag(static_cast<std::size_t>(faces_.rows()), 0),
       edge_flag(edges_.i.size(), 0);
   std::vector<int> stale_faces, stale_edges;
-  const int nv = static_cast<int>(x1.rows());
   for (int p = 0; p < nv; ++p) {
     if (!stale_[p]) continue;
     for (int k = vertex_faces_start_[p]; k < vertex_faces_start_[p + 1]; ++k) {
@@ -302,47 +312,52 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   std::vector<Pair>& pairs = pairs_;
   int idx[4];
   double alpha[4];
-  // One candidate list serves all passes — and later calls for the same step (same x0) — while no
-  // particle has moved more than h/2 (per coordinate) from where it was when the list was made: it
-  // is made with pad 2h, and every pair that a pass needs (within h, or eta on the paths) was then
-  // within h + 2 · h/2.
-  const bool same_step = listed_x0_.rows() == x0.rows() && listed_x0_ == x0;
-  if (!same_step) {
-    listed_.resize(0, 3);
+  // A new step: the pairs' distances at its start, and the pairs within h there, are found again;
+  // nothing is verified yet.
+  const int nv = static_cast<int>(x0.rows());
+  const bool new_step = !(step_x0_.rows() == nv && step_x0_ == x0);
+  if (new_step) {
+    step_x0_ = x0;
     verified_.resize(0, 3);
   }
-  // When a few particles have moved farther (a correction), only their pairs are found again
-  // (update_candidates: on the 100² cape on gc_mean_all, ~6 full lists a step had been made for a
-  // handful of particles each); when many have, the whole list.
+  // The candidate list (see candidates()): particles whose paths have left their listed boxes grown
+  // by h/2 are stale; a few (under 5 %) get their pairs found again (update_candidates: on the
+  // 100² cape on gc_mean_all, ~6 full lists a step had been made for a handful of particles each),
+  // many the whole list.
   bool rebuilt = false;
   int updated = 0;  // particles whose pairs the last refresh() found again (flagged in stale_)
   auto refresh = [&] {
     updated = 0;
-    const int n = static_cast<int>(x1.rows());
-    if (listed_.rows() == n) {
-      stale_.assign(static_cast<std::size_t>(n), 0);
-      for (int p = 0; p < n; ++p)
-        if ((x1.row(p) - listed_.row(p)).cwiseAbs().maxCoeff() > 0.5 * h) stale_[p] = 1, ++updated;
+    if (lb_lo_.rows() == nv) {
+      stale_.assign(static_cast<std::size_t>(nv), 0);
+      const double grow = 0.5 * h;
+      for (int p = 0; p < nv; ++p)
+        for (int c = 0; c < 3; ++c) {
+          const double lo = std::min(x0(p, c), x1(p, c)), hi = std::max(x0(p, c), x1(p, c));
+          if (lo < lb_lo_(p, c) - grow || hi > lb_hi_(p, c) + grow) {
+            stale_[p] = 1, ++updated;
+            break;
+          }
+        }
       if (updated == 0) return false;
-      if (updated * 20 < n) {
-        update_candidates(x0, x1, h, pairs);
-        for (int p = 0; p < n; ++p)
-          if (stale_[p]) listed_.row(p) = x1.row(p);
+      if (updated * 20 < nv) {
+        update_candidates(x0, x1, pairs);
         return false;
       }
       updated = 0;
     }
-    candidates(x0, x1, 2.0 * h, pairs);
-    listed_ = x1;
-    listed_x0_ = x0;
+    candidates(x0, x1, pairs);
     rebuilt = true;
     return true;
   };
 
   // 1. Proximity at the start: stop approach and ease apart towards the thickness, with friction.
   // The pairs within h at x0, with their closest points, depend on x0 alone: found once a step.
-  refresh();
-  if (!same_step) find_close_pairs(x0, pairs);
+  if (!refresh() && new_step) {  // the kept pairs' distances at the new start
+    double w[4];
+    for (Pair& p : pairs) p.d0 = closest(p, x0, w).norm();
+  }
+  if (new_step) find_close_pairs(x0, pairs);
   for (const Close& close : close_) {
     indices(close.pair, idx);
     signed_weights(close.pair.kind, close.w, alpha);
@@ -401,7 +416,6 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   // the candidate list was made anew. (The 71² cape on gc_mean_all took 7–12 passes a step over
   // ~6,000 pairs in proximity.)
   Contact c;
-  const int nv = static_cast<int>(x0.rows());
   // At the end of a call every listed pair is clear of contact (the last pass found none, or the
   // zones resolved them all, or nothing moved). So a later call for the same step, with the same
   // list, need test only the pairs with a particle that has moved since (the proximity phase or the
@@ -533,6 +547,10 @@ std::vector<std::array<int, 3>> SelfCollision::listed_pairs() const {
   return out;
 }
 
+// One traversal of the tree against itself: for each pair of triangles whose boxes overlap, the
+// edges that each owns against the other (an edge and a triangle sharing a particle excluded). An edge's box lies inside
+// its owner's, so every crossing edge–triangle pair is met once. (A box query per edge took ~7 ms
+// on a 64² cloth, 18 % of a cloth-onto-sphere run that counted at every frame.)
 int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
                         const std::vector<int>& joined) {
   if (F.rows() == 0) return 0;
@@ -540,18 +558,22 @@ int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
   const EdgeList edges = triangle_edges(F);
   const TriangleBvh bvh(x, F);
   int crossings = 0;
-  for (std::size_t e = 0; e < edges.i.size(); ++e) {
-    const int a = edges.i[e], b = edges.j[e];
-    Eigen::AlignedBox3d box(row(x, a));
-    box.extend(row(x, b));
-    bvh.query(box, [&](int f) {
-      for (int k = 0; k < 3; ++k)
-        if (rep[F(f, k)] == rep[a] || rep[F(f, k)] == rep[b]) return;
-      if (segment_crosses_triangle(row(x, a), row(x, b), row(x, F(f, 0)), row(x, F(f, 1)),
-                                   row(x, F(f, 2))))
+  auto owned_edges_against = [&](int ta, int tb) {
+    for (int k = 0; k < 3; ++k) {
+      const int e = edges.face_edges(ta, k);
+      if (edges.owner[e] != ta) continue;
+      const int a = rep[edges.i[e]], b = rep[edges.j[e]];
+      bool shared = false;
+      for (int m = 0; m < 3; ++m) shared = shared || rep[F(tb, m)] == a || rep[F(tb, m)] == b;
+      if (!shared && segment_crosses_triangle(row(x, edges.i[e]), row(x, edges.j[e]), row(x, F(tb, 0)),
+                                   row(x, F(tb, 1)), row(x, F(tb, 2))))
         ++crossings;
-    });
-  }
+    }
+  };
+  bvh.self_pairs([&](int ta, int tb) {
+    owned_edges_against(ta, tb);
+    owned_edges_against(tb, ta);
+  });
   return crossings;
 }
 

@@ -116,6 +116,29 @@ TEST(Intersections, CountsEdgesThroughTrianglesOnly) {
   EXPECT_EQ(count_intersections(x, F, {0, 1, 2, 0, 4, 5}), 1);
 }
 
+// The tree traversal counts exactly what a test of every edge against every triangle counts, on a
+// crumpled sheet with hundreds of crossings (an edge sharing a particle with the triangle excluded).
+TEST(Intersections, CountMatchesEveryEdgeAgainstEveryTriangle) {
+  const TriangleMesh m = make_grid({1.0, 1.0}, {12, 12}, {0, 0, 0}, {0, 1, 0});
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0.0, 0.15);
+  Eigen::MatrixX3d x = m.V;
+  for (int v = 0; v < x.rows(); ++v)
+    for (int c = 0; c < 3; ++c) x(v, c) += noise(rng);
+  const EdgeList e = triangle_edges(m.F);
+  int brute = 0;
+  for (std::size_t k = 0; k < e.i.size(); ++k)
+    for (int f = 0; f < m.F.rows(); ++f) {
+      const int a = e.i[k], b = e.j[k];
+      if ((m.F.row(f).array() == a).any() || (m.F.row(f).array() == b).any()) continue;
+      brute += segment_crosses_triangle(x.row(a).transpose(), x.row(b).transpose(),
+                                        x.row(m.F(f, 0)).transpose(), x.row(m.F(f, 1)).transpose(),
+                                        x.row(m.F(f, 2)).transpose());
+    }
+  EXPECT_GT(brute, 100) << brute;
+  EXPECT_EQ(count_intersections(x, m.F), brute);
+}
+
 ClothModel sheet(int n, double height, double size = 0.5) {
   const TriangleMesh m = make_grid({size, size}, {n, n}, {0, height, 0}, {0, 1, 0});
   return build_cloth(m, fabric_by_name("gray-interlock"));

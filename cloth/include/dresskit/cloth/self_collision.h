@@ -78,9 +78,8 @@ class SelfCollision {
     double d0;  ///< distance of the two primitives at the step's start (x0)
   };
   Eigen::Vector3d closest(const Pair& pair, const Eigen::MatrixX3d& x, double w[4]) const;
-  /// Candidate pairs whose swept boxes (x0 → x1, padded by pad) overlap.
-  void candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double pad,
-                  std::vector<Pair>& out);
+  /// The candidate list made anew for the paths x0 → x1 (see the .cpp).
+  void candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, std::vector<Pair>& out);
   /// A pair within the thickness at the step's start: closest points' weights, distance, normal.
   struct Close {
     Pair pair;
@@ -90,7 +89,7 @@ class SelfCollision {
     bool touching = false;  ///< closer than 1e-6 h: normal = the surface's, turned at use
   };
   /// The list brought up to date for the particles flagged in stale_ (see the .cpp).
-  void update_candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1, double h,
+  void update_candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                          std::vector<Pair>& out);
   void find_close_pairs(const Eigen::MatrixX3d& x0, const std::vector<Pair>& pairs);
   bool vertex_in_face(int v, int f) const;
@@ -102,14 +101,12 @@ class SelfCollision {
   std::vector<int> rep_;
   std::vector<int> vertex_owner_;
   std::vector<int> vertex_faces_start_, vertex_faces_;  ///< faces around each particle (CSR)
-  std::vector<char> stale_;  ///< per particle: moved more than h/2 since its pairs were listed ///<
-                             ///< one face per particle (-1 for particles without faces)
-  Eigen::MatrixX3d lo_, hi_;             ///< per particle: its path's box, padded (candidates())
-  std::vector<Pair> pairs_;              ///< the candidate list of the last resolve()
-  Eigen::MatrixX3d listed_x0_, listed_;  ///< the x0 and x1 it was made for
-  std::vector<Close> close_;             ///< the pairs within the thickness at listed_x0_
-  Eigen::MatrixX3d
-      verified_;  ///< x1 at the end of the last resolve() for listed_x0_: every pair clear
+  std::vector<char> stale_;  ///< per particle: its path has left its listed box grown by h/2
+  Eigen::MatrixX3d lb_lo_, lb_hi_;  ///< per particle: its listed box (its path's when listed)
+  std::vector<Pair> pairs_;         ///< the candidate list
+  std::vector<Close> close_;        ///< the pairs within the thickness at step_x0_
+  Eigen::MatrixX3d step_x0_;        ///< the start of the step of the last resolve()
+  Eigen::MatrixX3d verified_;  ///< x1 at the end of the last resolve() for step_x0_: every pair clear
   SelfCollisionOptions options_;
   TriangleBvh bvh_;
 };
