@@ -91,6 +91,9 @@ class SelfCollision {
   /// The list brought up to date for the particles flagged in stale_ (see the .cpp).
   void update_candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3d& x1,
                          std::vector<Pair>& out);
+  /// Distances at x0 for the pairs from first on; drops those that cannot come within the
+  /// thickness while their particles stay in their listed boxes.
+  void keep_reachable(const Eigen::MatrixX3d& x0, std::vector<Pair>& out, std::size_t first);
   void find_close_pairs(const Eigen::MatrixX3d& x0, const std::vector<Pair>& pairs);
   bool vertex_in_face(int v, int f) const;
   bool edges_touch(int e1, int e2) const;
@@ -103,6 +106,7 @@ class SelfCollision {
   std::vector<int> vertex_faces_start_, vertex_faces_;  ///< faces around each particle (CSR)
   std::vector<char> stale_;  ///< per particle: its path has left its listed box grown by h/2
   Eigen::MatrixX3d lb_lo_, lb_hi_;  ///< per particle: its listed box (its path's when listed)
+  Eigen::VectorXd reach_;           ///< per particle: farthest point of that box grown by h/2 from x0
   std::vector<Pair> pairs_;         ///< the candidate list
   std::vector<Close> close_;        ///< the pairs within the thickness at step_x0_
   Eigen::MatrixX3d step_x0_;        ///< the start of the step of the last resolve()
