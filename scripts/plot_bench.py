@@ -7,6 +7,8 @@ usage: scripts/plot_bench.py stability IN.csv OUT.png
        scripts/plot_bench.py surface IN.csv OUT.png     (dress-a-mesh thickness --plot's temperature.csv)
        scripts/plot_bench.py segmentation IN.csv OUT.png (bench_segmentation --csv)
        scripts/plot_bench.py alignment IN.csv OUT.png   (bench_alignment --only tradeoff --csv)
+       scripts/plot_bench.py sphere A.csv,B.csv,... OUT.png (bench_cloth_sphere CSVs and
+                                                       docs/data/blender_cloth_on_sphere.csv)
 """
 import csv
 import sys
@@ -167,8 +169,34 @@ def alignment(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def sphere(rows, out):
+    fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
+    markers = {"gray-interlock": "o", "11oz-black-denim": "s", "Blender default": "*"}
+    for ax, key, title in ((axes[0], "max_strain", "largest structural strain at the end"),
+                           (axes[1], "max_shear_strain", "largest shear strain at the end")):
+        for fabric in sorted({r["fabric"] for r in rows}):
+            pts = [r for r in rows if r["fabric"] == fabric and "failed" not in r.get("stopped", "")
+                   and "the brief" not in r["setting"] and "self-collision" not in r["setting"]
+                   and "run 2" not in r["setting"] and "run 3" not in r["setting"]]
+            ax.loglog([float(r["cpu_seconds_per_frame"]) for r in pts], [float(r[key]) for r in pts],
+                      markers.get(fabric, "^"), ms=9 if fabric == "Blender default" else 6, label=fabric)
+            for r in pts:
+                ax.annotate(r["setting"].replace("Blender, ", "Blender ").replace(" (run 1)", ""),
+                            (float(r["cpu_seconds_per_frame"]), float(r[key])), fontsize=6,
+                            xytext=(4, 2), textcoords="offset points")
+        ax.axvline(0.015, color="grey", ls="--", lw=0.8)
+        ax.text(0.0152, ax.get_ylim()[0] * 1.1, "goal 0.015 s", fontsize=7, color="grey")
+        ax.set_xlabel("CPU seconds per 1/24 s frame, one core")
+        ax.set_ylabel(title)
+        ax.legend(fontsize=8)
+    fig.suptitle("Cloth onto a sphere (64x64, 0.3 kg, 2 s): run time against strain; "
+                 "dresskit settings (bench_cloth_sphere) and Blender 3.4.1's cloth")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 if __name__ == "__main__":
     kind, src, out = sys.argv[1:4]
-    rows = list(csv.DictReader(open(src)))
+    rows = [r for path in src.split(",") for r in csv.DictReader(open(path))]
     {"stability": stability, "error": error, "heat": heat, "surface": surface,
-     "segmentation": segmentation, "alignment": alignment}[kind](rows, out)
+     "segmentation": segmentation, "alignment": alignment, "sphere": sphere}[kind](rows, out)
