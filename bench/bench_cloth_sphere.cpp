@@ -38,6 +38,7 @@ struct Setting {
   int iterations;          ///< projective iterations per step
   bool contacts_inside;    ///< projective_collisions
   bool cloth_collisions;   ///< self_collision
+  bool adaptive_weights = false;  ///< projective_adaptive_weights
 };
 
 struct Strains {
@@ -86,6 +87,8 @@ int main(int argc, char** argv) {
       {"projective 1/60 x 5", Integrator::projective, h60, 5, true, false},
       {"projective 1/60 x 10", Integrator::projective, h60, 10, true, false},
       {"projective 1/60 x 30", Integrator::projective, h60, 30, true, false},
+      {"projective 1/60 x 5, adaptive weights", Integrator::projective, h60, 5, true, false, true},
+      {"projective 1/60 x 10, adaptive weights", Integrator::projective, h60, 10, true, false, true},
       {"projective 1/60 x 5, contacts after the step", Integrator::projective, h60, 5, false, false},
       {"projective 1/24 x 5 + cloth-cloth", Integrator::projective, h24, 5, true, true},
       {"projective 1/60 x 5 + cloth-cloth", Integrator::projective, h60, 5, true, true},
@@ -117,6 +120,7 @@ int main(int argc, char** argv) {
     if (s.iterations > 0) o.projective_iterations = s.iterations;
     o.projective_collisions = s.contacts_inside;
     o.self_collision = s.cloth_collisions;
+    o.projective_adaptive_weights = s.adaptive_weights;
     ClothSimulator sim(scene.model, o);
     sim.set_pinned(scene.pins);
     std::string stopped = "duration reached";
