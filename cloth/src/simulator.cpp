@@ -631,11 +631,10 @@ StepResult ClothSimulator::try_step(double dt) {
       if (!model_.springs.limited.empty() || options_.strain_limiting) limit_strain(start, r, false);
       const double opened = model_.seams.size() > 0 ? sew(r) : 0.0;
       if (!options_.colliders.empty()) collide(x0, r);
-      // Moves this small cannot carry a pair of primitives across: the cloth–cloth pass leaves
-      // every pair at least 0.05 thickness apart.
-      if ((x_ - start).cwiseAbs().maxCoeff() <= 0.01 * self_->options().thickness &&
-          opened <= 0.1 * options_.seam_tolerance)
-        break;
+      // (Stopping already when a round moved nothing by more than 1 % of the thickness saved no
+      // time on the sphere or cape scenes and left the 100² cape's strain above the limit more
+      // often: 15.0 against 10.7 % at the end.)
+      if ((x_ - start).cwiseAbs().maxCoeff() == 0.0 && opened <= 0.1 * options_.seam_tolerance) break;
     }
     const Eigen::MatrixX3d before = x_;
     const SelfCollisionResult s = self_->resolve(x0, x_, inverse_mass_);
