@@ -12,23 +12,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
+#include "bench_common.h"
 #include "alignment/alignment_shapes.h"
 #include "dresskit/alignment/evaluation.h"
 
 using namespace dresskit;
 
 namespace {
-
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 // ICP as it was before the soft stage: hard correspondences only, strict coarse stages.
 IcpOptions hard_only() {
@@ -168,9 +162,9 @@ int main(int argc, char** argv) {
         TrialOptions to;
         to.angle_deg = 20;
         const Trial trial = make_trial(part, to, rng);
-        const double c0 = thread_cpu_seconds();
+        const double c0 = bench::thread_cpu_seconds();
         const IcpResult r = icp_align(trial.source, trial.target, v.options);
-        cpu.push_back(1e3 * (thread_cpu_seconds() - c0));
+        cpu.push_back(1e3 * (bench::thread_cpu_seconds() - c0));
         wall.push_back(r.seconds * 1e3);
         ok += trial_error(trial, r.transform).success();
         iterations += r.iterations;

@@ -6,28 +6,22 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <cstdio>
-#include <ctime>
 #include <vector>
 
+#include "bench_common.h"
 #include "dresskit/cloth/simulator.h"
 #include "interleaved_cholesky.h"
 
 using namespace dresskit;
 
 namespace {
-double cpu_seconds() {
-  timespec t;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
-
 template <typename Solve>
 double median_ms(Solve solve) {
   std::vector<double> rounds;
   for (int r = 0; r < 9; ++r) {
-    const double t0 = cpu_seconds();
+    const double t0 = bench::thread_cpu_seconds();
     for (int i = 0; i < 50; ++i) solve();
-    rounds.push_back((cpu_seconds() - t0) / 50 * 1e3);
+    rounds.push_back((bench::thread_cpu_seconds() - t0) / 50 * 1e3);
   }
   std::sort(rounds.begin(), rounds.end());
   return rounds[4];

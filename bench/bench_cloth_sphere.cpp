@@ -7,8 +7,6 @@
 // are edge–triangle intersections at the end.
 // Usage: bench_cloth_sphere [OUT.csv] [--scene PATH] [--fabric NAME] [--quick]
 //   --quick: only the projective settings (a few seconds).
-#include <time.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
@@ -24,12 +22,6 @@
 using namespace dresskit;
 
 namespace {
-
-double thread_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
-}
 
 struct Setting {
   std::string name;
@@ -124,7 +116,7 @@ int main(int argc, char** argv) {
     ClothSimulator sim(scene.model, o);
     sim.set_pinned(scene.pins);
     std::string stopped = "duration reached";
-    const double t0 = thread_cpu_seconds();
+    const double t0 = bench::thread_cpu_seconds();
     while (sim.time() < scene.duration - 1e-6 * s.dt) {
       const StepResult r = sim.step();
       if (!r.ok) {
@@ -132,7 +124,7 @@ int main(int argc, char** argv) {
         break;
       }
     }
-    const double per_frame = (thread_cpu_seconds() - t0) / frames;
+    const double per_frame = (bench::thread_cpu_seconds() - t0) / frames;
     const Strains e = strains(scene.model.springs, sim.positions());
     double closest = 1e300;
     Eigen::Vector3d n;
