@@ -313,8 +313,13 @@ double LayerContacts::height_below(int p, const ClothModel& m, const Eigen::Matr
 namespace {
 
 /// For each particle of layer l, its side of the layer beneath: the signed distance from its
-/// nearest point q on that layer along the layer's normal interpolated at q, or NaN when q lies on
-/// the layer's border (p is beside it, not over or under it) or farther than reach.
+/// nearest point q on that layer along the layer's angle-weighted pseudo-normal at q (Bærentzen &
+/// Aanæs 2005: the face's normal when q is inside a face, the sum of the two faces' normals on an
+/// edge, the angle-weighted sum around a vertex), or NaN when q lies on the layer's border (p is
+/// beside it, not over or under it) or farther than reach. With q inside a face, p − q is along
+/// that face's normal, so the sign is exact; vertex normals interpolated at q (the first version)
+/// turn against the face's own normal where a hem folds back sharply and flagged particles lying
+/// on the outer side of the face their nearest point is in (docs/cloth.md, Layers).
 Eigen::VectorXd sides(const ClothModel& m, const Eigen::MatrixX3d& x, int l, double reach) {
   Eigen::VectorXd side =
       Eigen::VectorXd::Constant(x.rows(), std::numeric_limits<double>::quiet_NaN());
@@ -332,7 +337,25 @@ Eigen::VectorXd sides(const ClothModel& m, const Eigen::MatrixX3d& x, int l, dou
   std::vector<char> border_particle(static_cast<std::size_t>(x.rows()), 0);
   for (const auto& [e, count] : edge_faces)
     if (count == 1) border_particle[e.first] = border_particle[e.second] = 1;
-  const Eigen::MatrixX3d normal = vertex_normals(x, F);
+  // Pseudo-normals: per face, per edge (sum of its faces' unit normals) and per vertex (the faces'
+  // unit normals weighted by their angles there).
+  Eigen::MatrixX3d face_normal(F.rows(), 3);
+  Eigen::MatrixX3d vertex_normal = Eigen::MatrixX3d::Zero(x.rows(), 3);
+  std::map<std::pair<int, int>, Eigen::Vector3d> edge_normal;
+  for (Eigen::Index f = 0; f < F.rows(); ++f) {
+    const Eigen::Vector3d P[3] = {x.row(F(f, 0)).transpose(), x.row(F(f, 1)).transpose(),
+                                  x.row(F(f, 2)).transpose()};
+    const Eigen::Vector3d n = (P[1] - P[0]).cross(P[2] - P[0]).normalized();
+    face_normal.row(f) = n.transpose();
+    for (int k = 0; k < 3; ++k) {
+      const double angle = std::acos(
+          std::clamp((P[(k + 1) % 3] - P[k]).normalized().dot((P[(k + 2) % 3] - P[k]).normalized()),
+                     -1.0, 1.0));
+      vertex_normal.row(F(f, k)) += angle * n.transpose();
+      auto [it, added] = edge_normal.try_emplace(std::minmax(F(f, k), F(f, (k + 1) % 3)), n);
+      if (!added) it->second += n;
+    }
+  }
   const TriangleBvh bvh(x, F);
   for (Eigen::Index p = 0; p < x.rows(); ++p) {
     if (m.layer[p] != l) continue;
@@ -356,9 +379,22 @@ Eigen::VectorXd sides(const ClothModel& m, const Eigen::MatrixX3d& x, int l, dou
       if (w[(k + 2) % 3] <= 1e-9 && border_particle[u]) beyond = true;
     }
     if (beyond) continue;
+    // The feature q lies on: a face (no zero weight), an edge (one: the edge opposite that corner)
+    // or a vertex (two: the third corner).
+    int zeros = 0, zero = 0, other = 0;
+    for (int k = 0; k < 3; ++k) {
+      if (w[k] > 0.0) {
+        other = k;
+      } else {
+        zero = k;
+        ++zeros;
+      }
+    }
     const Eigen::Vector3d n =
-        (w[0] * normal.row(a) + w[1] * normal.row(b) + w[2] * normal.row(c)).transpose();
-    if (n.norm() == 0.0) continue;
+        zeros == 0   ? Eigen::Vector3d(face_normal.row(f).transpose())
+        : zeros == 1 ? edge_normal[std::minmax(corner[(zero + 1) % 3], corner[(zero + 2) % 3])]
+                     : Eigen::Vector3d(vertex_normal.row(corner[other]).transpose());
+    if (!(n.norm() > 0.0)) continue;
     side[p] = (x.row(p).transpose() - q).dot(n.normalized());
   }
   return side;

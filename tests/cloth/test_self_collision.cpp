@@ -117,7 +117,8 @@ TEST(Intersections, CountsEdgesThroughTrianglesOnly) {
 }
 
 // The tree traversal counts exactly what a test of every edge against every triangle counts, on a
-// crumpled sheet with hundreds of crossings (an edge sharing a particle with the triangle excluded).
+// crumpled sheet with hundreds of crossings (an edge sharing a particle with the triangle
+// excluded).
 TEST(Intersections, CountMatchesEveryEdgeAgainstEveryTriangle) {
   const TriangleMesh m = make_grid({1.0, 1.0}, {12, 12}, {0, 0, 0}, {0, 1, 0});
   std::mt19937 rng(7);
@@ -252,9 +253,10 @@ TEST(SelfCollision, FallingSheetRestsOnAPinnedSheetWithoutCrossing) {
 
 // Two and three garments dropped together on a sphere (the examples/collisions scenes, coarser so
 // the test runs in seconds): no triangle is crossed at any frame, so no layer passes through
-// another. The layer order is kept but for a free hem that tucks under the next garment's hem
-// without crossing it (measured with this drop and eight drops shifted by 1–8 mm: 0–1 of ~324
-// particles with two garments, 1–4 of ~625 with three, at the worst frame; docs/cloth.md).
+// another, and no particle lies on the inner side of the layer beneath at any frame. (With the
+// layer-order guard running alongside cloth–cloth collisions and the order measured along
+// interpolated vertex normals, hems wrapped or seemed to: 1–4 of ~625 at the worst frame;
+// docs/cloth.md, Layers.)
 TEST(SelfCollision, StackedLayersOnASphereKeepOrderAndNeverIntersect) {
   SimulationOptions o;
   o.dt = 1.0 / 240;
@@ -288,9 +290,46 @@ TEST(SelfCollision, StackedLayersOnASphereKeepOrderAndNeverIntersect) {
     }
     EXPECT_GT(checked, 250);
     EXPECT_GT(repulsions, 500);  // the layers did touch
-    EXPECT_LE(worst_order, checked / 100);
+    EXPECT_EQ(worst_order, 0);
     EXPECT_EQ(worst_crossings, 0);
   }
+}
+
+// A single garment and a double layer over it dropped on a sphere: at every frame the double
+// layer's gap stays at or above its lower limit but for the strain limiter's tolerance (1e-4 of
+// the thickness) and what the cloth–cloth pass's rigid impact zones leave at landing (a zone moves
+// one shell of the double layer without the other); measured below.
+TEST(SelfCollision, StackedDoubleLayerKeepsItsGapOnASphere) {
+  SimulationOptions o;
+  o.dt = 1.0 / 240;
+  o.air_damping = 0.1;
+  o.self_collision = true;
+  o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
+  auto garment = [](int n, double height, const char* fabric) {
+    return build_cloth(make_grid(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2i(n, n),
+                                 Eigen::Vector3d(0, height, 0), Eigen::Vector3d::UnitY()),
+                       fabric_by_name(fabric));
+  };
+  const LayerThickness t{0.01704, 0.01591, 0.02253};  // camel-ponte-roma's thermal thickness
+  ClothSimulator sim(stack_layers({garment(20, 0.40, "ivory-rib-knit"),
+                                   make_double_layer(garment(20, 0.45, "camel-ponte-roma"), t)},
+                                  0.003),
+                     o);
+  double lowest = 1.0;
+  int worst_order = 0;
+  for (int step = 1; step <= 360; ++step) {
+    ASSERT_TRUE(sim.step().ok) << step;
+    if (step % 10 == 0) {
+      lowest = std::min(lowest, layer_gap(sim.model(), sim.positions()).min);
+      worst_order =
+          std::max(worst_order, layer_order(sim.model(), sim.positions(), o.colliders).violations);
+    }
+  }
+  // Measured 15.908 mm against 15.910 (the limiter's tolerance, 1e-4). The 0.5 % allowed is what
+  // the 48×48 examples need at landing (two singles + double: 0.066 mm of 17.31, 0.4 %).
+  EXPECT_GE(lowest, t.min * (1 - 5e-3));
+  EXPECT_EQ(worst_order, 0);
+  EXPECT_EQ(sim.intersections(), 0);
 }
 
 TEST(SelfCollision, TwistedRibbonNeverIntersectsItself) {

@@ -70,7 +70,9 @@ struct LayerOrder {
 /// Layer order: each particle p of layer ℓ ≥ 1 within 10 layer spacings (the two layers' offset
 /// difference) of the layer beneath is compared with its nearest point q there: p violates the
 /// order when it lies on the layer's inner side, (p − q)·n(q) < −spacing/4, with n the layer's
-/// vertex normals interpolated at q, turned to the side the layer lies on at rest. Particles whose
+/// angle-weighted pseudo-normal at q (the face's normal inside a face, the sum of the two faces'
+/// normals on an edge, the angle-weighted sum around a vertex), turned to the side the layer lies
+/// on at rest. Particles whose
 /// nearest point is on the layer's border lie beside it and are not checked. A local test: where
 /// hanging layers curl and fold together, a ray or a height along a collider's normal can cross the
 /// layer beneath in order (measured: such a test flagged 1–3 particles of curled hems in 7 of 8

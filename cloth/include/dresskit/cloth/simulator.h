@@ -45,7 +45,9 @@ struct SimulationOptions {
   /// Several layers on analytic colliders: before the length limits and collisions, a particle that
   /// lies less than its layer's min gap (ClothModel::layer_min_gap) above the particle beneath it
   /// (cloth/layers.h, match_layers) is moved out along its nearest collider's normal (at most a tenth of the mean
-  /// spring length per step), inner layers first, and loses its inward speed.
+  /// spring length per step), inner layers first, and loses its inward speed. Only without
+  /// cloth–cloth collisions (self_collision off): with them no layer passes through another, and
+  /// the guard's pushes made hems wrap around the next garment's (docs/cloth.md, Layers).
   bool layer_order_guard = true;
   /// Cloth–cloth collisions (self-contact, layers, garments; cloth/self_collision.h) after the
   /// collider pass, so that a state without intersections never gains one.
@@ -215,6 +217,7 @@ class ClothSimulator {
   /// every spring within its bounds.
   void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all);
   std::vector<char> limit_active_, limit_next_;  ///< limit_strain's active sets (work arrays)
+  std::vector<char> limit_held_;  ///< limit_strain: moved by a contact pass since its last call
   Eigen::MatrixX3d limit_end_;   ///< the positions at the end of the last limit_strain
   bool limit_converged_ = false;  ///< ... and whether every spring was then within its bounds
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
