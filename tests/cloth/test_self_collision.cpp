@@ -251,6 +251,16 @@ TEST(SelfCollision, FallingSheetRestsOnAPinnedSheetWithoutCrossing) {
   }
 }
 
+// Garments dropped on a 0.3 m sphere at 1/240 s with cloth–cloth collisions.
+SimulationOptions drop_on_sphere() {
+  SimulationOptions o;
+  o.dt = 1.0 / 240;
+  o.air_damping = 0.1;
+  o.self_collision = true;
+  o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
+  return o;
+}
+
 // Two and three garments dropped together on a sphere (the examples/collisions scenes, coarser so
 // the test runs in seconds): no triangle is crossed at any frame, so no layer passes through
 // another, and no particle lies on the inner side of the layer beneath at any frame. (With the
@@ -258,11 +268,7 @@ TEST(SelfCollision, FallingSheetRestsOnAPinnedSheetWithoutCrossing) {
 // interpolated vertex normals, hems wrapped or seemed to: 1–4 of ~625 at the worst frame;
 // docs/cloth.md, Layers.)
 TEST(SelfCollision, StackedLayersOnASphereKeepOrderAndNeverIntersect) {
-  SimulationOptions o;
-  o.dt = 1.0 / 240;
-  o.air_damping = 0.1;
-  o.self_collision = true;
-  o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
+  const SimulationOptions o = drop_on_sphere();
   auto garment = [](int n, double size, double height, const char* fabric) {
     return build_cloth(
         make_grid(Eigen::Vector2d(size, size), Eigen::Vector2i(n, n),
@@ -300,11 +306,7 @@ TEST(SelfCollision, StackedLayersOnASphereKeepOrderAndNeverIntersect) {
 // the thickness) and what the cloth–cloth pass, the last of each step, leaves at landing; measured
 // below.
 TEST(SelfCollision, StackedDoubleLayerKeepsItsGapOnASphere) {
-  SimulationOptions o;
-  o.dt = 1.0 / 240;
-  o.air_damping = 0.1;
-  o.self_collision = true;
-  o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
+  const SimulationOptions o = drop_on_sphere();
   auto garment = [](int n, double height, const char* fabric) {
     return build_cloth(make_grid(Eigen::Vector2d(1.0, 1.0), Eigen::Vector2i(n, n),
                                  Eigen::Vector3d(0, height, 0), Eigen::Vector3d::UnitY()),
