@@ -195,9 +195,10 @@ void SelfCollision::keep_reachable(const Eigen::MatrixX3d& x0, std::vector<Pair>
     reach_[p] = std::sqrt(r2);
   }
   double w[4];
+  for (auto it = out.begin() + static_cast<std::ptrdiff_t>(first); it != out.end(); ++it)
+    it->d0 = closest(*it, x0, w).norm();
   int idx[4];
-  auto far = [&](Pair& p) {
-    p.d0 = closest(p, x0, w).norm();
+  auto far = [&](const Pair& p) {
     indices(p, idx);
     const int side_a = p.kind == 0 ? 1 : 2;
     double ra = 0.0, rb = 0.0;
