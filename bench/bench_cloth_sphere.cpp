@@ -54,9 +54,7 @@ Strains strains(const SpringSet& s, const Eigen::MatrixX3d& x) {
   return out;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int run(int argc, char** argv) {
   std::string csv, scene_path = std::string(DRESSKIT_SOURCE_DIR) + "/examples/cloth_on_sphere.json", fabric;
   bool quick = false;
   for (int a = 1; a < argc; ++a) {
@@ -141,4 +139,15 @@ int main(int argc, char** argv) {
           << closest * 1e3 << ',' << crossings << ",\"" << stopped << "\"\n";
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {  // a bad scene path or fabric name: one line, exit 2
+    std::fprintf(stderr, "bench_cloth_sphere: %s\n", e.what());
+    return 2;
+  }
 }
