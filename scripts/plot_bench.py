@@ -170,14 +170,19 @@ def alignment(rows, out):
 
 
 def sphere(rows, out):
-    fig, axes = plt.subplots(1, 2, figsize=(13, 5.5))
+    fig, axes = plt.subplots(2, 2, figsize=(13, 11))
     markers = {"gray-interlock": "o", "11oz-black-denim": "s", "Blender default": "*"}
-    for ax, key, title in ((axes[0], "max_strain", "largest structural strain at the end"),
-                           (axes[1], "max_shear_strain", "largest shear strain at the end")):
+    for ax, key, title in ((axes[0][0], "max_strain", "largest structural strain at the end"),
+                           (axes[0][1], "max_shear_strain", "largest shear strain at the end"),
+                           (axes[1][0], "late_mean_max_strain",
+                            "largest structural strain, mean over the last 0.5 s"),
+                           (axes[1][1], "late_mean_max_shear_strain",
+                            "largest shear strain, mean over the last 0.5 s")):
         for fabric in sorted({r["fabric"] for r in rows}):
             pts = [r for r in rows if r["fabric"] == fabric and "failed" not in r.get("stopped", "")
                    and "the brief" not in r["setting"] and "self-collision" not in r["setting"]
-                   and "run 2" not in r["setting"] and "run 3" not in r["setting"]]
+                   and "run 2" not in r["setting"] and "run 3" not in r["setting"]
+                   and r.get(key)]
             ax.loglog([float(r["cpu_seconds_per_frame"]) for r in pts], [float(r[key]) for r in pts],
                       markers.get(fabric, "^"), ms=9 if fabric == "Blender default" else 6, label=fabric)
             for r in pts:

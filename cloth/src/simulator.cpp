@@ -45,6 +45,11 @@ void check_options(const SimulationOptions& o) {
   need(o.gravity.allFinite(), "gravity: must be finite");
   need(std::isfinite(o.air_damping) && o.air_damping >= 0.0, "air_damping: must be ≥ 0");
   need(std::isfinite(o.spring_damping) && o.spring_damping >= 0.0, "spring_damping: must be ≥ 0");
+  // Newton's and projective dynamics' minimisations have no term for it: refused, not ignored.
+  need(o.spring_damping == 0.0 ||
+           (o.integrator != Integrator::newton && o.integrator != Integrator::projective),
+       "spring_damping: the newton and projective integrators do not model it (use implicit or "
+       "symplectic, or set it to 0)");
   need(std::isfinite(o.strain_limit) && o.strain_limit > 0.0, "strain_limit: must be positive");
   need(o.strain_limit_iterations > 0, "strain_limit_iterations: must be positive");
   need(std::isfinite(o.strain_limit_tolerance) && o.strain_limit_tolerance > 0.0,

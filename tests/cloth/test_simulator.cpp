@@ -237,6 +237,18 @@ TEST(Simulator, BadOptionsAndPinsAreRejected) {
   o = {};
   o.air_damping = -1.0;
   EXPECT_THROW(ClothSimulator(model, o), InputError);
+  o = {};
+  o.spring_damping = 0.01;  // modelled by implicit Euler, not by the minimising integrators
+  EXPECT_NO_THROW(ClothSimulator(model, o));
+  for (Integrator integrator : {Integrator::newton, Integrator::projective}) {
+    o.integrator = integrator;
+    try {
+      ClothSimulator rejected(model, o);
+      ADD_FAILURE() << "spring_damping accepted by " << to_string(integrator);
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("spring_damping"), std::string::npos);
+    }
+  }
   ClothSimulator sim(model, {});
   EXPECT_THROW(sim.set_pinned({3}), InputError);
   EXPECT_THROW(parse_integrator("rk4"), InputError);
