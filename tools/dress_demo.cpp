@@ -1,7 +1,7 @@
 #include "dress_demo.h"
 
+#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +37,7 @@ DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
                            const DressDemoOptions& options) {
   if (!(options.seconds > 0.0)) throw InputError("dress seconds: must be positive");
   if (!(options.dt > 0.0)) throw InputError("dress dt: must be positive");
+  if (options.iterations <= 0) throw InputError("dress iterations: must be positive");
   const auto start = std::chrono::steady_clock::now();
   // The t-shirt is worn over the trousers: a little more ease, so that the two start apart where
   // they overlap at the waist.
@@ -45,7 +46,9 @@ DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
   const TriangleMesh tshirt = make_garment(shape, GarmentKind::tshirt, over);
 
   SimulationOptions sim_options;
-  sim_options.integrator = Integrator::implicit_euler;
+  sim_options.integrator = Integrator::projective;
+  sim_options.projective_iterations = options.iterations;
+  sim_options.adaptive = true;
   sim_options.dt = options.dt;
   sim_options.air_damping = 0.5;
   sim_options.strain_limiting = true;
@@ -65,17 +68,20 @@ DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
   sim.set_pinned(belt);
 
   const int at_start = sim.intersections();
-  const int steps = static_cast<int>(std::ceil(options.seconds / options.dt - 1e-9));
   DressDemoResult result;
   std::string stopped = "duration reached";
-  int done = 0;
-  for (; done < steps; ++done) {
+  int done = 0, retries = 0;
+  double smallest = options.dt;
+  while (sim.time() < options.seconds - 1e-9 * options.dt) {
     const StepResult r = sim.step();
+    retries += r.retries;
     if (!r.ok) {
       result.ok = false;
       stopped = r.failure;
       break;
     }
+    ++done;
+    smallest = std::min(smallest, r.dt);
   }
   const Eigen::MatrixX3d& x = sim.positions();
   int inside = 0;
@@ -103,9 +109,12 @@ DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
        {"trousers (11oz-black-denim, waistband held)", "tshirt (gray-interlock, worn over)"}},
       {"particles", x.rows()},
       {"integrator", to_string(sim_options.integrator)},
+      {"projective_iterations", options.iterations},
       {"dt", options.dt},
+      {"smallest_dt", smallest},
       {"steps", done},
-      {"simulated_seconds", done * options.dt},
+      {"step_retries", retries},
+      {"simulated_seconds", sim.time()},
       {"stopped_reason", stopped},
       {"max_strain", sim.max_strain()},
       {"mean_strain", sim.mean_strain()},

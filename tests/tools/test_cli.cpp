@@ -146,6 +146,9 @@ TEST(Cli, DemoWritesTheSceneAndAReport) {
   const auto& dressing = report["dressing"];
   EXPECT_EQ(report["stages_run"].back(), "simulation");
   EXPECT_EQ(dressing["stopped_reason"], "duration reached");
+  EXPECT_EQ(dressing["integrator"], "projective");  // with adaptive stepping: whole 1 s simulated
+  EXPECT_GE(dressing["simulated_seconds"].get<double>(), 1.0 - 1e-9);
+  EXPECT_LE(dressing["smallest_dt"].get<double>(), dressing["dt"].get<double>());
   EXPECT_EQ(dressing["intersections"]["at_start"], 0);
   EXPECT_EQ(dressing["intersections"]["at_end"], 0);
   EXPECT_EQ(dressing["particles_inside_body_at_end"], 0);
