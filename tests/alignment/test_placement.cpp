@@ -89,15 +89,26 @@ TEST(Matching, SkirtHalvesFollowTheLegsByName) {
   }
 }
 
+/// The MakeHuman casualsuit (authored on the woman), the child's body and the reference refit of the
+/// one onto the other, in metres, without labels.
+struct CasualsuitOnTheChild {
+  TriangleMesh garment, body, reference;
+  CasualsuitOnTheChild() {
+    const std::string d = test::data_dir();
+    LoadOptions dm;
+    dm.units = Units::parse("dm");
+    garment = load_mesh(d + "/garments/mh_female_casualsuit01.obj", dm);
+    body = load_mesh(d + "/bodies/mh_girl_child_11y.obj", dm);
+    reference = load_mesh(d + "/reference/female_casualsuit01__on__mh_girl_child_11y.obj", dm);
+  }
+};
+
 TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
   DRESSKIT_REQUIRE_DATA();
+  CasualsuitOnTheChild c;
+  TriangleMesh &garment = c.garment, &body = c.body;
+  const TriangleMesh& reference = c.reference;
   const std::string d = test::data_dir();
-  LoadOptions dm;
-  dm.units = Units::parse("dm");
-  TriangleMesh garment = load_mesh(d + "/garments/mh_female_casualsuit01.obj", dm);
-  TriangleMesh body = load_mesh(d + "/bodies/mh_girl_child_11y.obj", dm);
-  const TriangleMesh reference =
-      load_mesh(d + "/reference/female_casualsuit01__on__mh_girl_child_11y.obj", dm);
   apply_part_labels(garment, d + "/labels/mh_clothes_part_labels.json", "",
                     "mh_female_casualsuit01.obj");
   apply_part_labels(body, d + "/labels/mh_body_part_labels.json");
@@ -119,13 +130,9 @@ TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
 // mean 0.98 %, 95th percentile 2.51 %, 0 inside, 42 % stretch (file labels: 1.06 / 2.15 / 0 / 33 %).
 TEST(Placement, CasualsuitOnTheChildWithSegmentationLabels) {
   DRESSKIT_REQUIRE_DATA();
-  const std::string d = test::data_dir();
-  LoadOptions dm;
-  dm.units = Units::parse("dm");
-  TriangleMesh garment = load_mesh(d + "/garments/mh_female_casualsuit01.obj", dm);
-  TriangleMesh body = load_mesh(d + "/bodies/mh_girl_child_11y.obj", dm);
-  const TriangleMesh reference =
-      load_mesh(d + "/reference/female_casualsuit01__on__mh_girl_child_11y.obj", dm);
+  CasualsuitOnTheChild c;
+  TriangleMesh &garment = c.garment, &body = c.body;
+  const TriangleMesh& reference = c.reference;
   for (TriangleMesh* mesh : {&garment, &body}) {
     const SegmentationResult r = segment_mesh(*mesh);
     mesh->labels = r.vertex_labels;
