@@ -29,8 +29,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#if defined(__SSE2__)
+#if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
+#define DRESSKIT_SSE2 1
 #endif
 
 #include "dresskit/cloth/seams.h"
@@ -124,10 +125,11 @@ double local_step(const std::vector<LocalSpring>& springs, const double* x, cons
     }
   };
   std::size_t k = 0;
-#if defined(__SSE2__)
+#if defined(DRESSKIT_SSE2)
   // The iterations' form (residual, no check): two springs at a time in SSE2 registers, as the
   // explicit force loop (simulator.cpp) — the square roots, divisions and law_k for both in one
-  // instruction each, then the adds one spring at a time; the arithmetic is one()'s.
+  // instruction each, then the adds one spring at a time; the arithmetic is one()'s (law_k's
+  // branchless form, not fitted_k's: the two are kept apart as the scalar ones are).
   if (Residual && !Check) {
     const __m128d one_v = _mm_set1_pd(1.0), zero = _mm_setzero_pd(), tiny = _mm_set1_pd(1e-12),
                   u_scale = _mm_set1_pd(3.0 / kKneeStrain), three = _mm_set1_pd(3.0),

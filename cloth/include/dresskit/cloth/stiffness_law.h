@@ -40,7 +40,8 @@ inline double fitted_k(double k0, double k_knee, double knee_strain, double e) {
   const double per_strain = 1.0 / knee_strain;  // folded to a constant when knee_strain is one
   const double rise = std::max(k_knee - k0, 0.0);
   const double u = 3.0 * per_strain * e;  // position in knot intervals
-  if (u >= 3.0) return k0 + rise + std::max(2.0 * rise, k0 + rise) * per_strain * (e - knee_strain);
+  // !(u < 3): a NaN strain takes this branch instead of converting NaN to int below.
+  if (!(u < 3.0)) return k0 + rise + std::max(2.0 * rise, k0 + rise) * per_strain * (e - knee_strain);
   const int s = static_cast<int>(u);
   // Knots k0 + rise (s/3)²; between knots s and s+1 the rise grows by (2s + 1)/9 linearly.
   return k0 + rise * (1.0 / 9.0) * (s * s + (u - s) * (2 * s + 1));
