@@ -110,6 +110,10 @@ void AlignCommand::add_to(CLI::App& app) {
       ->add_option("--max-stretch", placement.max_edge_stretch,
                    "edges longer than (1 + this) x rest length are shortened")
       ->capture_default_str();
+  command
+      ->add_option("--layer-gap", placement.layer_gap,
+                   "pieces of an outfit kept this far apart, outer outside inner [m]; < 0 = off")
+      ->capture_default_str();
   command->add_flag("--part-scale", part_scale, "per-part similarity ICP (default: rigid parts)");
   command->add_option("--reference", reference,
                       "placement: a reference placement of the garment (same vertex "
@@ -195,6 +199,8 @@ int AlignCommand::run() {
   report["parts"] = parts;
   report["pushed_out_vertices"] = p.pushed_out;
   report["stretch_limited_edges"] = p.stretch_limited_edges;
+  report["layer_pieces"] = p.layer_pieces;
+  report["layer_pushed_vertices"] = p.layer_pushed;
   report["max_edge_stretch_limit"] = placement.max_edge_stretch;
   report["clearance_m"] = placement.clearance;
   report["blend_radius_m"] = placement.blend_radius;

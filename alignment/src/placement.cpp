@@ -10,6 +10,7 @@
 #include <set>
 
 #include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/topology.h"
 
 namespace dresskit {
 namespace {
@@ -215,6 +216,38 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
     rest[e] = (garment.V.row(edges[e].first) - garment.V.row(edges[e].second)).norm();
   const PointLocator body_points(body.V);
   std::vector<bool> moved(garment.num_vertices(), false);
+  // Layers: the pieces ordered by the height of their tops, the lowest innermost; per outer vertex
+  // the pieces inside it (their vertices' locators) and how far across the body's surface a
+  // vertex of one may be from it and still lie under it (two of that piece's mean edges).
+  int pieces = 0;
+  const std::vector<int> face_piece = face_components(garment.F, garment.num_vertices(), &pieces);
+  std::vector<int> piece_of(garment.num_vertices(), -1);
+  for (int f = 0; f < garment.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) piece_of[garment.F(f, k)] = face_piece[f];
+  std::vector<double> top(pieces, -HUGE_VAL), edge_sum(pieces, 0.0);
+  std::vector<int> edge_count(pieces, 0), first_vertex(pieces, -1);
+  std::vector<std::vector<int>> piece_rows(pieces);
+  std::vector<int> loose;  // vertices of no face: pushed out of the body only
+  for (int v = 0; v < garment.num_vertices(); ++v) {
+    if (piece_of[v] < 0) {
+      loose.push_back(v);
+      continue;
+    }
+    top[piece_of[v]] = std::max(top[piece_of[v]], garment.V(v, 1));
+    piece_rows[piece_of[v]].push_back(v);
+    if (first_vertex[piece_of[v]] < 0) first_vertex[piece_of[v]] = v;
+  }
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const int c = piece_of[edges[e].first];
+    edge_sum[c] += rest[e] * out.global_scale;
+    ++edge_count[c];
+  }
+  std::vector<int> order(pieces);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return top[a] < top[b]; });
+  for (int c : order) out.layer_pieces.push_back(first_vertex[c]);
+  const bool layered = options.layer_gap >= 0.0 && pieces > 1;
+  std::vector<bool> layer_moved(garment.num_vertices(), false);
   for (int it = 0; it < options.push_iterations; ++it) {
     for (int sweep = 0; sweep < options.stretch_sweeps; ++sweep) {
       int limited = 0;
@@ -230,18 +263,37 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
       }
       if (sweep == 0) out.stretch_limited_edges = limited;
     }
-    for (int v = 0; v < garment.num_vertices(); ++v) {
-      const Eigen::Vector3d x = out.V.row(v).transpose();
-      const int b = body_points.nearest(x);
-      const Eigen::Vector3d n = body_normals.row(b).transpose();
-      const double s = (x - body.V.row(b).transpose()).dot(n);
-      if (s < options.clearance) {
-        out.V.row(v) += ((options.clearance - s) * n).transpose();
-        moved[v] = true;
+    // The inner pieces where they are now (they move in the rounds too).
+    std::vector<std::unique_ptr<PointLocator>> piece_points(pieces);
+    if (layered)
+      for (int c = 0; c < pieces; ++c)
+        piece_points[c] = std::make_unique<PointLocator>(gather(out.V, {}, piece_rows[c]).V);
+    for (int rank = 0; rank <= pieces; ++rank)
+      for (int v : rank < pieces ? piece_rows[order[rank]] : loose) {
+        Eigen::Vector3d x = out.V.row(v).transpose();
+        const int b = body_points.nearest(x);
+        const Eigen::Vector3d n = body_normals.row(b).transpose();
+        const double s = (x - body.V.row(b).transpose()).dot(n);
+        if (s < options.clearance) {
+          x += (options.clearance - s) * n;
+          moved[v] = true;
+        }
+        for (int inner = 0; layered && rank < pieces && inner < rank; ++inner) {
+          const int c = order[inner];
+          const int u = piece_rows[c][piece_points[c]->nearest(x)];
+          const Eigen::Vector3d d = x - out.V.row(u).transpose();
+          const double above = d.dot(n);
+          const double reach = 2.0 * edge_sum[c] / std::max(1, edge_count[c]);
+          if (above < options.layer_gap && (d - above * n).norm() < reach) {
+            x += (options.layer_gap - above) * n;
+            layer_moved[v] = true;
+          }
+        }
+        out.V.row(v) = x.transpose();
       }
-    }
   }
   out.pushed_out = static_cast<int>(std::count(moved.begin(), moved.end(), true));
+  out.layer_pushed = static_cast<int>(std::count(layer_moved.begin(), layer_moved.end(), true));
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -89,6 +89,8 @@ TEST(AlignCli, PlacementWritesPosedGarmentAndMatches) {
   EXPECT_EQ(j["matches"].size(), 6u);
   EXPECT_EQ(j["parts"].size(), 6u);
   EXPECT_TRUE(j["unmatched_garment_parts"].empty());
+  EXPECT_EQ(j["layer_pieces"].size(), 2u);  // the casualsuit: t-shirt over jeans
+  EXPECT_GT(j["layer_pushed_vertices"].get<int>(), 0);
   const TriangleMesh posed = load_mesh(dir.file("out/posed.obj"));
   EXPECT_EQ(posed.num_vertices(), 2197);
   EXPECT_LT(posed.V.col(1).maxCoeff(), 1.3);  // metres, on a 1.27 m child

@@ -40,6 +40,11 @@ struct PlacementOptions {
   /// garment.
   double max_edge_stretch = 0.3;
   int stretch_sweeps = 10;  ///< Gauss–Seidel sweeps over the edges per round
+  /// An outfit of several pieces (connected components: a t-shirt and jeans) is worn in layers, a
+  /// piece whose top is higher outside those whose top is lower; in each push round every vertex
+  /// of an outer piece ends at least this far outside the nearest vertex of an inner piece, along
+  /// the body's normal there, so that the pieces start the simulation apart [m]; < 0 = off.
+  double layer_gap = 0.003;
 };
 
 struct PartPlacement {
@@ -59,6 +64,10 @@ struct PlacementResult {
   std::vector<std::string> junctions;  ///< the part pairs used as landmarks
   std::vector<PartPlacement> parts;
   int pushed_out = 0;             ///< garment vertices moved out of the body
+  /// Pieces (connected components) from the innermost layer out, by their first vertex's index,
+  /// and the vertices of outer pieces moved out of inner ones (layer_gap).
+  std::vector<int> layer_pieces;
+  int layer_pushed = 0;
   int stretch_limited_edges = 0;  ///< edges over the strain limit in the last round's first sweep
   double seconds = 0.0;
 };
