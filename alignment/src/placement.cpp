@@ -242,6 +242,8 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
     edge_sum[c] += rest[e] * out.global_scale;
     ++edge_count[c];
   }
+  std::vector<double> reach(pieces);  // two mean edges of the piece, as placed
+  for (int c = 0; c < pieces; ++c) reach[c] = 2.0 * edge_sum[c] / std::max(1, edge_count[c]);
   std::vector<int> order(pieces);
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](int a, int b) { return top[a] < top[b]; });
@@ -283,8 +285,7 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
           const int u = piece_rows[c][piece_points[c]->nearest(x)];
           const Eigen::Vector3d d = x - out.V.row(u).transpose();
           const double above = d.dot(n);
-          const double reach = 2.0 * edge_sum[c] / std::max(1, edge_count[c]);
-          if (above < options.layer_gap && (d - above * n).norm() < reach) {
+          if (above < options.layer_gap && (d - above * n).norm() < reach[c]) {
             x += (options.layer_gap - above) * n;
             layer_moved[v] = true;
           }
