@@ -739,6 +739,7 @@ StepResult ClothSimulator::try_step(double dt) {
     r.self.zones += s.zones;
     r.self.zone_particles += s.zone_particles;
     r.self.held = r.self.held || s.held;
+    r.self.tangled_particles = std::max(r.self.tangled_particles, s.tangled_particles);
     v_ += (x_ - before) / dt_;
     if ((x_ - before).cwiseAbs().maxCoeff() == 0.0) break;
   }

@@ -8,7 +8,10 @@
 
 #include "alignment/alignment_shapes.h"
 #include "dresskit/alignment/placement.h"
+#include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/self_collision.h"
+#include "dresskit/cloth/simulator.h"
 #include "dresskit/segmentation/segment.h"
 #include "dresskit/mesh/errors.h"
 #include "scene/scene_fixture.h"
@@ -153,6 +156,49 @@ TEST(Placement, TwoPieceOutfitIsPlacedInLayers) {
   const PlacementQuality q = placement_quality(p.V, c.garment, c.reference.V, c.body);
   EXPECT_LT(q.mean_distance, 0.02);
   EXPECT_LT(q.inside_fraction, 0.01);
+}
+
+// From the placement into the simulator: the pieces in layers leave 17 crossings (most inside the
+// t-shirt, where blending folds a sleeve into its body); cloth–cloth collisions leave the crossing
+// particles out until they are free, so the drape runs and the crossings undo themselves (before,
+// the passes fought the crossings and the run stopped within 0.1 s). Rest shape: the garment
+// scaled by the placement's global similarity.
+TEST(Placement, PlacedOutfitDrapesOutOfItsCrossings) {
+  DRESSKIT_REQUIRE_DATA();
+  CasualsuitOnTheChild c;
+  const std::string d = test::data_dir();
+  apply_part_labels(c.garment, d + "/labels/mh_clothes_part_labels.json", "",
+                    "mh_female_casualsuit01.obj");
+  apply_part_labels(c.body, d + "/labels/mh_body_part_labels.json");
+  const PlacementResult p = place_garment(c.garment, c.body);
+  TriangleMesh rest = c.garment;
+  rest.V *= p.global_scale;
+  SimulationOptions o;
+  o.integrator = Integrator::projective;
+  o.dt = 1.0 / 120;
+  o.projective_iterations = 4;
+  o.air_damping = 0.5;
+  o.strain_limiting = true;
+  o.self_collision = true;
+  const auto body = std::make_shared<const MeshDistance>(c.body);
+  o.colliders.push_back(Collider::mesh(body, 0.5));
+  ClothSimulator sim(build_cloth(rest, fabric_by_name("gray-interlock")), o);
+  sim.set_state(p.V, Eigen::MatrixX3d::Zero(p.V.rows(), 3));
+  const int at_start = sim.intersections();
+  EXPECT_GT(at_start, 5);
+  int tangled_at_start = -1;
+  while (sim.time() < 0.5 - 1e-9) {
+    const StepResult r = sim.step();
+    ASSERT_TRUE(r.ok) << "t = " << sim.time() << ": " << r.failure;
+    if (tangled_at_start < 0) tangled_at_start = r.self.tangled_particles;
+  }
+  EXPECT_GT(tangled_at_start, 0);
+  EXPECT_LT(sim.intersections(), at_start / 2);
+  Eigen::Vector3d n;
+  int inside = 0;
+  for (Eigen::Index i = 0; i < sim.positions().rows(); ++i)
+    inside += body->distance(sim.positions().row(i).transpose(), &n) < 0.0;
+  EXPECT_EQ(inside, 0);
 }
 
 // The chain without label files: segmentation (issue 5) cuts and names both meshes, and the

@@ -40,6 +40,9 @@ struct SelfCollisionResult {
   int zones = 0;           ///< rigid impact zones at the end (0 when the passes sufficed)
   int zone_particles = 0;  ///< particles in them
   bool held = false;       ///< the last resort was used: every free particle stayed at x0
+  /// Particles of edge–triangle pairs that cross at x0, left out of every pair (the cloth started
+  /// tangled; a state without crossings never gains one).
+  int tangled_particles = 0;
 };
 
 /// Edges of a triangle list, each once (i < j), with one owning triangle each.
@@ -95,6 +98,8 @@ class SelfCollision {
   /// thickness while their particles stay in their listed boxes.
   void keep_reachable(const Eigen::MatrixX3d& x0, std::vector<Pair>& out, std::size_t first);
   void find_close_pairs(const Eigen::MatrixX3d& x0, const std::vector<Pair>& pairs);
+  /// Flags (tangled_) the particles of the edge–triangle pairs that cross at x0.
+  void find_tangles(const Eigen::MatrixX3d& x0);
   bool vertex_in_face(int v, int f) const;
   bool edges_touch(int e1, int e2) const;
   void indices(const Pair& p, int idx[4]) const;
@@ -108,6 +113,8 @@ class SelfCollision {
   Eigen::MatrixX3d lb_lo_, lb_hi_;  ///< per particle: its listed box (its path's when listed)
   Eigen::VectorXd reach_;           ///< per particle: farthest point of that box grown by h/2 from x0
   std::vector<Pair> pairs_;         ///< the candidate list
+  std::vector<char> tangled_;       ///< per particle: in a crossing at the step's start
+  int tangled_count_ = 0;
   std::vector<Close> close_;        ///< the pairs within the thickness at step_x0_
   Eigen::MatrixX3d step_x0_;        ///< the start of the step of the last resolve()
   Eigen::MatrixX3d verified_;  ///< x1 at the end of the last resolve() for step_x0_: every pair clear
