@@ -285,7 +285,8 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
           const int u = piece_rows[c][piece_points[c]->nearest(x)];
           const Eigen::Vector3d d = x - out.V.row(u).transpose();
           const double above = d.dot(n);
-          if (above < options.layer_gap && (d - above * n).norm() < reach[c]) {
+          // Under it, not across the body from it: within reach along the normal too.
+          if (above < options.layer_gap && above > -reach[c] && (d - above * n).norm() < reach[c]) {
             x += (options.layer_gap - above) * n;
             layer_moved[v] = true;
           }
