@@ -115,6 +115,8 @@ void AlignCommand::add_to(CLI::App& app) {
                    "pieces of an outfit kept this far apart, outer outside inner [m]; < 0 = off")
       ->capture_default_str();
   command->add_flag("--part-scale", part_scale, "per-part similarity ICP (default: rigid parts)");
+  command->add_flag("--keep-ease", placement.keep_ease,
+                    "per-part ICP onto the body raised by the part's ease, not onto the skin");
   command->add_option("--reference", reference,
                       "placement: a reference placement of the garment (same vertex "
                       "order) to compare with; adds `quality` to result.json");

@@ -153,8 +153,24 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
     } else {
       IcpOptions o = options.part_icp;
       o.with_scale = options.part_scale;
-      const IcpResult r = icp_align(gather(garment.V, {}, grows),
-                                    gather(body.V, body_normals, brows), o, out.global);
+      PointSet target = gather(body.V, body_normals, brows);
+      if (options.keep_ease) {
+        // The part's ease under the global placement: the median height of its points over the
+        // body part along the nearest body vertex's normal; the part is registered to the body
+        // part's surface raised by it, so that ICP does not pull it onto the skin.
+        const PointLocator near(target.V);
+        std::vector<double> heights;
+        for (int v : grows) {
+          const Eigen::Vector3d x =
+              (out.global * Eigen::Vector4d(garment.V(v, 0), garment.V(v, 1), garment.V(v, 2), 1.0)).head<3>();
+          const int b = near.nearest(x);
+          heights.push_back((x - target.V.row(b).transpose()).dot(target.N.row(b).transpose()));
+        }
+        std::nth_element(heights.begin(), heights.begin() + heights.size() / 2, heights.end());
+        const double ease = std::max(0.0, heights[heights.size() / 2]);
+        target.V += ease * target.N;
+      }
+      const IcpResult r = icp_align(gather(garment.V, {}, grows), target, o, out.global);
       const Eigen::Matrix4d relative = r.transform * out.global.inverse();
       const double scale_change = r.scale / out.global_scale;
       if (rotation_angle_deg(relative) > options.max_part_rotation_deg) {
