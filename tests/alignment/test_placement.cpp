@@ -93,29 +93,36 @@ TEST(Matching, SkirtHalvesFollowTheLegsByName) {
   }
 }
 
-/// The MakeHuman casualsuit (authored on the woman), the child's body and the reference refit of the
-/// one onto the other, in metres, without labels.
-struct CasualsuitOnTheChild {
+/// A MakeHuman outfit (`mh_<outfit>.obj`), a body and the reference refit of the one onto the other,
+/// in metres, without labels until label_from_files().
+struct OutfitOnBody {
   TriangleMesh garment, body, reference;
-  CasualsuitOnTheChild() {
+  std::string outfit;
+  OutfitOnBody(const std::string& outfit_name, const std::string& body_name) : outfit(outfit_name) {
     const std::string d = test::data_dir();
     LoadOptions dm;
     dm.units = Units::parse("dm");
-    garment = load_mesh(d + "/garments/mh_female_casualsuit01.obj", dm);
-    body = load_mesh(d + "/bodies/mh_girl_child_11y.obj", dm);
-    reference = load_mesh(d + "/reference/female_casualsuit01__on__mh_girl_child_11y.obj", dm);
+    garment = load_mesh(d + "/garments/mh_" + outfit + ".obj", dm);
+    body = load_mesh(d + "/bodies/" + body_name + ".obj", dm);
+    reference = load_mesh(d + "/reference/" + outfit + "__on__" + body_name + ".obj", dm);
+  }
+  /// The ground-truth part labels of ../shared/data/labels.
+  void label_from_files() {
+    const std::string d = test::data_dir();
+    apply_part_labels(garment, d + "/labels/mh_clothes_part_labels.json", "", "mh_" + outfit + ".obj");
+    apply_part_labels(body, d + "/labels/mh_body_part_labels.json");
   }
 };
 
+/// The woman's casualsuit on the child: the cross-body case with a reference.
+OutfitOnBody casualsuit_on_the_child() { return {"female_casualsuit01", "mh_girl_child_11y"}; }
+
 TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
   DRESSKIT_REQUIRE_DATA();
-  CasualsuitOnTheChild c;
+  OutfitOnBody c = casualsuit_on_the_child();
+  c.label_from_files();
   TriangleMesh &garment = c.garment, &body = c.body;
   const TriangleMesh& reference = c.reference;
-  const std::string d = test::data_dir();
-  apply_part_labels(garment, d + "/labels/mh_clothes_part_labels.json", "",
-                    "mh_female_casualsuit01.obj");
-  apply_part_labels(body, d + "/labels/mh_body_part_labels.json");
   const PlacementResult p = place_garment(garment, body);
   EXPECT_EQ(p.matching.matches.size(), 6u);
   EXPECT_GE(p.junctions.size(), 3u);
@@ -136,11 +143,8 @@ TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
 // reference as before.
 TEST(Placement, TwoPieceOutfitIsPlacedInLayers) {
   DRESSKIT_REQUIRE_DATA();
-  CasualsuitOnTheChild c;
-  const std::string d = test::data_dir();
-  apply_part_labels(c.garment, d + "/labels/mh_clothes_part_labels.json", "",
-                    "mh_female_casualsuit01.obj");
-  apply_part_labels(c.body, d + "/labels/mh_body_part_labels.json");
+  OutfitOnBody c = casualsuit_on_the_child();
+  c.label_from_files();
   PlacementOptions unlayered;
   unlayered.layer_gap = -1.0;
   const PlacementResult before = place_garment(c.garment, c.body, unlayered);
@@ -164,18 +168,11 @@ TEST(Placement, TwoPieceOutfitIsPlacedInLayers) {
 // stretched to 17 times its length (0.35 without the push).
 TEST(Placement, LayerPushKeepsEveryOutfitWhole) {
   DRESSKIT_REQUIRE_DATA();
-  const std::string d = test::data_dir();
-  LoadOptions dm;
-  dm.units = Units::parse("dm");
   for (const std::string outfit : {"male_casualsuit02", "female_elegantsuit01"}) {
     SCOPED_TRACE(outfit);
-    const std::string body_name = outfit[0] == 'm' ? "mh_man_young_average" : "mh_woman_young_average";
-    TriangleMesh garment = load_mesh(d + "/garments/mh_" + outfit + ".obj", dm);
-    TriangleMesh body = load_mesh(d + "/bodies/" + body_name + ".obj", dm);
-    const TriangleMesh reference =
-        load_mesh(d + "/reference/" + outfit + "__on__" + body_name + ".obj", dm);
-    apply_part_labels(garment, d + "/labels/mh_clothes_part_labels.json", "", "mh_" + outfit + ".obj");
-    apply_part_labels(body, d + "/labels/mh_body_part_labels.json");
+    OutfitOnBody c(outfit, outfit[0] == 'm' ? "mh_man_young_average" : "mh_woman_young_average");
+    c.label_from_files();
+    const TriangleMesh &garment = c.garment, &body = c.body, &reference = c.reference;
     PlacementOptions unlayered;
     unlayered.layer_gap = -1.0;
     const PlacementResult before = place_garment(garment, body, unlayered);
@@ -194,15 +191,9 @@ TEST(Placement, LayerPushKeepsEveryOutfitWhole) {
 // crossings).
 TEST(Placement, KeepingTheEaseLeavesAnOutfitOnItsOwnBodyInPlace) {
   DRESSKIT_REQUIRE_DATA();
-  const std::string d = test::data_dir();
-  LoadOptions dm;
-  dm.units = Units::parse("dm");
-  TriangleMesh garment = load_mesh(d + "/garments/mh_male_casualsuit02.obj", dm);
-  TriangleMesh body = load_mesh(d + "/bodies/mh_man_young_average.obj", dm);
-  const TriangleMesh reference =
-      load_mesh(d + "/reference/male_casualsuit02__on__mh_man_young_average.obj", dm);
-  apply_part_labels(garment, d + "/labels/mh_clothes_part_labels.json", "", "mh_male_casualsuit02.obj");
-  apply_part_labels(body, d + "/labels/mh_body_part_labels.json");
+  OutfitOnBody c("male_casualsuit02", "mh_man_young_average");
+  c.label_from_files();
+  const TriangleMesh &garment = c.garment, &body = c.body, &reference = c.reference;
   PlacementOptions ease;
   ease.keep_ease = true;
   const PlacementResult skin = place_garment(garment, body), kept = place_garment(garment, body, ease);
@@ -221,11 +212,8 @@ TEST(Placement, KeepingTheEaseLeavesAnOutfitOnItsOwnBodyInPlace) {
 // scaled by the placement's global similarity.
 TEST(Placement, PlacedOutfitDrapesOutOfItsCrossings) {
   DRESSKIT_REQUIRE_DATA();
-  CasualsuitOnTheChild c;
-  const std::string d = test::data_dir();
-  apply_part_labels(c.garment, d + "/labels/mh_clothes_part_labels.json", "",
-                    "mh_female_casualsuit01.obj");
-  apply_part_labels(c.body, d + "/labels/mh_body_part_labels.json");
+  OutfitOnBody c = casualsuit_on_the_child();
+  c.label_from_files();
   const PlacementResult p = place_garment(c.garment, c.body);
   TriangleMesh rest = c.garment;
   rest.V *= p.global_scale;
@@ -262,7 +250,7 @@ TEST(Placement, PlacedOutfitDrapesOutOfItsCrossings) {
 // mean 0.98 %, 95th percentile 2.51 %, 0 inside, 42 % stretch (file labels: 1.06 / 2.15 / 0 / 33 %).
 TEST(Placement, CasualsuitOnTheChildWithSegmentationLabels) {
   DRESSKIT_REQUIRE_DATA();
-  CasualsuitOnTheChild c;
+  OutfitOnBody c = casualsuit_on_the_child();
   TriangleMesh &garment = c.garment, &body = c.body;
   const TriangleMesh& reference = c.reference;
   for (TriangleMesh* mesh : {&garment, &body}) {
