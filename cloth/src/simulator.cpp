@@ -9,7 +9,9 @@
 #include <emmintrin.h>
 #define DRESSKIT_SSE2 1
 #endif
+#include <cstdio>
 #include <limits>
+#include <utility>
 
 #include "dresskit/cloth/geometry.h"
 #include "dresskit/cloth/layers.h"
@@ -98,6 +100,27 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   deep_push_cap_ = 0.5 * layer_push_cap_;
   inv_rest_.resize(model_.springs.rest_length.size());
   for (std::size_t k = 0; k < inv_rest_.size(); ++k) inv_rest_[k] = 1.0 / model_.springs.rest_length[k];
+  // Each particle's mean structural rest length (the mean over the cloth for one without any): the
+  // length scale of the contact step bound.
+  {
+    const SpringSet& s = model_.springs;
+    const int n = static_cast<int>(x_.rows());
+    std::vector<int> count(static_cast<std::size_t>(n), 0);
+    contact_length_ = Eigen::VectorXd::Zero(n);
+    double sum = 0.0;
+    int structural = 0;
+    for (int k = 0; k < s.size(); ++k) {
+      if (s.type[k] != SpringType::structural) continue;
+      for (int p : {s.i[k], s.j[k]}) {
+        contact_length_[p] += s.rest_length[k];
+        ++count[p];
+      }
+      sum += s.rest_length[k];
+      ++structural;
+    }
+    const double mean = structural ? sum / structural : 0.0;
+    for (int p = 0; p < n; ++p) contact_length_[p] = count[p] ? contact_length_[p] / count[p] : mean;
+  }
   assert(model_.layer.maxCoeff() < static_cast<int>(model_.layer_offset.size()));
   set_pinned({});
   const int n = static_cast<int>(x_.rows());
@@ -394,6 +417,40 @@ double ClothSimulator::max_strain() const {
   return over_structural_strains(model_.springs, x_, 0.0, [](double a, double e) { return std::max(a, e); });
 }
 
+namespace {
+/// The structural spring with the largest strain at x: index and strain (−1 and 0 without any).
+std::pair<int, double> worst_structural(const SpringSet& s, const Eigen::MatrixX3d& x) {
+  std::pair<int, double> worst{-1, 0.0};
+  for (int k = 0; k < s.size(); ++k) {
+    if (s.type[k] != SpringType::structural) continue;
+    const double e = (x.row(s.j[k]) - x.row(s.i[k])).norm() / s.rest_length[k] - 1.0;
+    if (worst.first < 0 || e > worst.second) worst = {k, e};
+  }
+  return worst;
+}
+
+std::string fixed(double value, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", digits, value);
+  return buf;
+}
+}  // namespace
+
+std::string ClothSimulator::blow_up_report(const Eigen::MatrixX3d& x_integrated, double t) const {
+  const SpringSet& s = model_.springs;
+  const auto [k, strain] = worst_structural(s, x_);
+  const double after_integrator = (x_integrated.row(s.j[k]) - x_integrated.row(s.i[k])).norm() / s.rest_length[k] - 1.0;
+  const bool by_integrator = after_integrator > options_.blow_up_strain;
+  return "blow-up at t = " + fixed(t, 4) + " s: structural spring " + std::to_string(k) + " (particles " +
+         std::to_string(s.i[k]) + "–" + std::to_string(s.j[k]) + ", rest length " +
+         fixed(s.rest_length[k] * 1e3, 2) + " mm) strained " + fixed(100.0 * strain, 1) + " %, beyond " +
+         fixed(100.0 * options_.blow_up_strain, 0) + " % (" +
+         (by_integrator ? "by the integrator's step"
+                        : "by the constraint and contact passes after the integrator (" +
+                              fixed(100.0 * after_integrator, 1) + " % before them)") +
+         ")";
+}
+
 double ClothSimulator::mean_strain() const {
   const int n = model_.springs.count(SpringType::structural);
   if (n == 0) return 0.0;
@@ -567,23 +624,51 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
     for (int ci = 0; ci < colliders; ++ci) {
       const Collider& c = options_.colliders[ci];
       Eigen::Vector3d n;
-      const Eigen::Vector3d x = row(x_, i);
-      const double travel = (x - row(lookup_x_[ci], i)).norm();
+      const Eigen::Vector3d x = row(x_, i), x0 = row(x_start, i);
+      // Every point of the path x0 → x is within the farther of its two ends from the last lookup.
+      const double travel = std::max((x - row(lookup_x_[ci], i)).norm(), (x0 - row(lookup_x_[ci], i)).norm());
       if (lookup_d_(i, ci) - 1.75 * travel > margin + delta + 1e-4) continue;
       const double d = c.distance(x, &n);
       lookup_d_(i, ci) = d;
       lookup_x_[ci].row(i) = x.transpose();
       if (c.penalty > 0.0 && d < margin + delta) contacts_.add(i, ci, n, margin + delta - std::max(d, margin));
-      if (d >= margin || pinned_[i]) continue;
-      ++r.collisions;
-      const Eigen::Vector3d x0 = row(x_start, i);
+      if (pinned_[i]) continue;
       Eigen::Vector3d unused;
-      const double d0 = c.distance(x0, &unused);
+      // Where the path first comes within the margin: t_in (1: at its end), f_in the distance − margin there.
+      double t_in = 1.0, f_in = d - margin, d0 = 0.0;
+      if (d >= margin) {
+        // Ends outside, but a fast particle may have passed through a thin part (a finger, an arm
+        // seen edge-on) within the step: continuous collision detection by conservative advancement
+        // along the path (sphere tracing: the distance is a lower bound on how far the path can go
+        // before it meets the surface, with the grid's Lipschitz bound 1.75). Only paths long
+        // enough to reach the margin from either end are traced.
+        const double path = (x - x0).norm();
+        if (d - margin > 1.75 * path) continue;
+        d0 = c.distance(x0, &unused);
+        if (d0 < margin || (d0 - margin) + (d - margin) > 1.75 * path) continue;
+        t_in = -1.0;
+        for (double t = 0.0, f = d0 - margin; t < 1.0;) {
+          // Steps of at least 1/64 of the path: a grazing path (parallel to the surface just
+          // beyond the margin) takes at most 64 lookups.
+          t += std::max(f / (1.75 * path), 1.0 / 64.0);
+          if (t >= 1.0) break;
+          f = c.distance(x0 + t * (x - x0), &unused) - margin;
+          if (f < 0.0) {
+            t_in = t, f_in = f;
+            break;
+          }
+        }
+        if (t_in < 0.0) continue;
+        ++r.tunnelling;
+      } else {
+        d0 = c.distance(x0, &unused);
+      }
+      ++r.collisions;
       if (d0 >= margin) {
         // The entry point: the root of f(t) = distance(x0 + t (x − x0)) − margin on [0, 1] by the
         // Illinois variant of regula falsi (f is nearly linear along a short path: 2–4 lookups where
         // bisection took 10–20); lo stays outside (f ≥ 0), hi inside.
-        double lo = 0.0, hi = 1.0, f_lo = d0 - margin, f_hi = d - margin, outside = f_lo;
+        double lo = 0.0, hi = t_in, f_lo = d0 - margin, f_hi = f_in, outside = f_lo;
         const double path = (x - x0).norm();
         for (int it = 0, kept = 0; it < 40 && (hi - lo) * path > 1e-7 && outside > 1e-7; ++it) {
           const double t = std::clamp((lo * f_hi - hi * f_lo) / (f_hi - f_lo), lo, hi);
@@ -696,6 +781,7 @@ StepResult ClothSimulator::try_step(double dt) {
   // Constraints, then collisions: the layer guard and the length limits move particles, the
   // collision projection last keeps every particle outside the colliders.
   r.integrate_seconds = since(t);
+  const Eigen::MatrixX3d x_integrated = x_;
   t = Clock::now();
   // The guard is for runs without cloth–cloth collisions: with them no layer can pass through
   // another, and its pushes made hems wrap around the next garment's (docs/cloth.md, Layers).
@@ -752,8 +838,7 @@ StepResult ClothSimulator::try_step(double dt) {
     const double strain = max_strain();
     if (strain > options_.blow_up_strain) {
       r.ok = false;
-      r.failure = "blow-up: strain " + std::to_string(strain) + " beyond " +
-                  std::to_string(options_.blow_up_strain);
+      r.failure = blow_up_report(x_integrated, time_ + dt);
     }
   }
   if (!r.ok) {  // keep the last good state
@@ -763,27 +848,86 @@ StepResult ClothSimulator::try_step(double dt) {
   return r;
 }
 
+// The largest step that keeps contact and explicit stepping under control [s] (adaptive stepping):
+//  - contact: a particle within one spring length of a collider moves at most
+//    contact_travel × its springs' mean rest length in a step (farther out it may close all but
+//    that length of its gap), so a particle stopped by the body leaves its neighbours at most that
+//    far behind: one step cannot tear a spring, and a thin feature cannot be skipped;
+//  - symplectic Euler: h ω_max ≤ 2 × 0.9 for the stiffest mode, ω_max² bounded (Gershgorin) by
+//    max over particles of Σ k (1/m_i + 1/√(m_i m_j)) over its springs at their tangent stiffness
+//    a little beyond their strain, plus the colliders' penalty stiffness.
+double ClothSimulator::step_bound() {
+  double bound = std::numeric_limits<double>::infinity();
+  const int n = static_cast<int>(x_.rows());
+  if (!options_.colliders.empty() && options_.contact_travel > 0.0) {
+    for (int i = 0; i < n; ++i) {
+      const double speed = v_.row(i).norm();
+      if (pinned_[i] || !(speed > 0.0)) continue;
+      const double reach = contact_length_[i];
+      double gap = std::numeric_limits<double>::infinity();
+      for (const Collider& c : options_.colliders) {
+        Eigen::Vector3d unused;
+        gap = std::min(gap, c.distance(row(x_, i), &unused));
+      }
+      const double margin = options_.collision_margin + model_.layer_offset[model_.layer[i]];
+      const double travel = std::max(options_.contact_travel * reach, gap - margin - reach);
+      bound = std::min(bound, travel / speed);
+    }
+  }
+  if (options_.integrator == Integrator::symplectic_euler) {
+    const SpringSet& s = model_.springs;
+    std::vector<double> omega2(static_cast<std::size_t>(n), 0.0);
+    for (int k = 0; k < s.size(); ++k) {
+      const int i = s.i[k], j = s.j[k];
+      const double e = (x_.row(j) - x_.row(i)).norm() * inv_rest_[k] - 1.0;
+      const double stiffness = fitted_tangent(s.k_rest[k], s.k_knee[k], kKneeStrain, std::max(e, 0.0) + 0.05);
+      const double mi = model_.mass(i), mj = model_.mass(j);
+      if (!(mi > 0.0) || !(mj > 0.0)) continue;
+      const double cross = stiffness / std::sqrt(mi * mj);
+      omega2[i] += stiffness / mi + cross;
+      omega2[j] += stiffness / mj + cross;
+    }
+    double worst = 0.0;
+    for (int i = 0; i < n; ++i) worst = std::max(worst, pinned_[i] ? 0.0 : omega2[i]);
+    double penalty = 0.0;
+    for (const Collider& c : options_.colliders) penalty = std::max(penalty, c.penalty);
+    worst += penalty * std::exp(4.0) / options_.penalty_thickness;
+    if (worst > 0.0) {
+      const double omega = std::sqrt(worst);
+      // Spring damping β k: damping ratio ζ = β ω / 2 shrinks the bound to 2 (√(ζ² + 1) − ζ) / ω.
+      const double zeta = 0.5 * options_.spring_damping * omega;
+      bound = std::min(bound, 0.9 * 2.0 * (std::sqrt(zeta * zeta + 1.0) - zeta) / omega);
+    }
+  }
+  return bound;
+}
+
 StepResult ClothSimulator::step() {
-  if (dt_ <= 0.0) dt_ = options_.dt;
+  if (dt_next_ <= 0.0) dt_next_ = options_.dt;
   if (!options_.adaptive) {
     StepResult r = try_step(options_.dt);
     if (r.ok) time_ += r.dt;
     return r;
   }
-  double dt = dt_;
+  // dt_next_ is the controller's step (halved on failure, grown after calm steps); a step takes it
+  // or the contact and stability bound, whichever is smaller, never below dt_min.
+  double dt = dt_next_;
   int retries = 0;
+  const double bound = step_bound();
   for (;;) {
+    const double h = std::max(std::min(dt, bound), options_.dt_min);
     const double strain_before = max_strain();
     const Eigen::MatrixX3d x0 = x_, v0 = v_;
-    StepResult r = try_step(dt);
-    const bool jump = r.ok && std::abs(max_strain() - strain_before) > options_.max_strain_change;
+    StepResult r = try_step(h);
+    // Only a rise counts: the length limits bringing a strain back down is no reason to retry.
+    const bool jump = r.ok && max_strain() - strain_before > options_.max_strain_change;
     if (r.ok && !jump) {
       r.retries = retries;
-      time_ += dt;
+      time_ += h;
       calm_steps_ = std::abs(max_strain() - strain_before) < 0.25 * options_.max_strain_change ? calm_steps_ + 1 : 0;
-      dt_ = dt;
+      dt_next_ = std::max(dt, h);
       if (calm_steps_ >= 10) {
-        dt_ = std::min(options_.dt, 1.25 * dt);
+        dt_next_ = std::min(options_.dt, 1.25 * dt_next_);
         calm_steps_ = 0;
       }
       return r;
@@ -792,7 +936,7 @@ StepResult ClothSimulator::step() {
       x_ = x0;
       v_ = v0;
     }
-    if (dt * 0.5 < options_.dt_min) {
+    if (h * 0.5 < options_.dt_min) {
       if (r.ok) {  // a strain jump at the smallest step: undone above, report it
         r.ok = false;
         r.failure = "strain changed by more than " + std::to_string(options_.max_strain_change) +
@@ -800,10 +944,10 @@ StepResult ClothSimulator::step() {
       }
       r.failure += " (adaptive step at its minimum " + std::to_string(options_.dt_min) + " s)";
       r.retries = retries;
-      dt_ = dt;
+      dt_next_ = h;
       return r;
     }
-    dt *= 0.5;
+    dt = h * 0.5;
     ++retries;
     calm_steps_ = 0;
   }

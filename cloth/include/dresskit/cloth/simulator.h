@@ -101,6 +101,9 @@ struct SimulationOptions {
   bool adaptive = false;
   double dt_min = 1e-6;            ///< [s]
   double max_strain_change = 0.05; ///< per step [unitless]
+  /// Adaptive stepping near colliders: a particle within one spring length of a collider moves at
+  /// most this fraction of its springs' mean rest length per step (0: no such bound) [unitless].
+  double contact_travel = 0.5;
 };
 
 /// Pinned particles driven along a path: turned about `axis` through `centre` at a constant rate and
@@ -125,6 +128,7 @@ struct StepResult {
   int strain_limit_sweeps = 0;
   int springs_limited = 0;   ///< springs shortened by strain limiting in this step
   int collisions = 0;        ///< particles pushed out of colliders in this step
+  int tunnelling = 0;        ///< of those, particles whose path crossed a collider but ended outside it
   int layer_pushes = 0;      ///< particles moved out by the layer-order guard in this step
   int deep_pushes = 0;       ///< particles deeper than one push inside a collider (cloth started inside)
   SelfCollisionResult self;  ///< cloth–cloth collisions of this step
@@ -179,7 +183,7 @@ class ClothSimulator {
   double static_residual() const;
   double time() const { return time_; }
   /// The step the next step() will try [s]: options().dt unless adaptive stepping shrank it.
-  double current_dt() const { return dt_; }
+  double current_dt() const { return dt_next_ > 0.0 ? dt_next_ : options_.dt; }
 
   const ClothModel& model() const { return model_; }
   const SimulationOptions& options() const { return options_; }
@@ -233,6 +237,13 @@ class ClothSimulator {
   void add_penalty_forces(Eigen::MatrixX3d& f) const;
   void build_pattern();
   StepResult try_step(double dt);
+  /// Adaptive stepping: the largest step that the contacts and (symplectic Euler) the stiffest
+  /// spring allow at the current state [s] (infinity when nothing bounds it).
+  double step_bound();
+  /// Why a step failed the blow-up check: the most strained structural spring, its particles and
+  /// strain, the time, and whether the integrator or the passes after it (positions x_integrated
+  /// in between) stretched it.
+  std::string blow_up_report(const Eigen::MatrixX3d& x_integrated, double t) const;
   Eigen::Vector3d wind_at(double t) const;
   double allowed_length(int s) const;
 
@@ -248,7 +259,9 @@ class ClothSimulator {
   Eigen::MatrixX3d pin_start_;    ///< driven pins' positions at time 0 (rows of pin_motion_.particles)
   double time_ = 0.0;
   double dt_ = 0.0;
+  double dt_next_ = 0.0;  ///< adaptive stepping: the controller's next step [s] (0: not started)
   int calm_steps_ = 0;
+  Eigen::VectorXd contact_length_;  ///< per particle: mean structural rest length [m] (step_bound)
   /// The implicit system's matrix, its sparsity fixed at the first implicit step; each step writes
   /// values through precomputed offsets instead of rebuilding it from triplets (which cost over half
   /// of a step's time).

@@ -47,4 +47,16 @@ inline double fitted_k(double k0, double k_knee, double knee_strain, double e) {
   return k0 + rise * (1.0 / 9.0) * (s * s + (u - s) * (2 * s + 1));
 }
 
+/// The tangent stiffness d(k(ε) ε)/dε = k + ε k' [N/m] of the same law (= StiffnessLaw's
+/// tension_derivative): what a step's stability sees.
+inline double fitted_tangent(double k0, double k_knee, double knee_strain, double e) {
+  if (e <= 0.0) return k0;
+  const double per_strain = 1.0 / knee_strain;
+  const double rise = std::max(k_knee - k0, 0.0);
+  const double u = 3.0 * per_strain * e;
+  const double slope = !(u < 3.0) ? std::max(2.0 * rise, k0 + rise) * per_strain
+                                  : rise * (1.0 / 9.0) * (2 * static_cast<int>(u) + 1) * 3.0 * per_strain;
+  return fitted_k(k0, k_knee, knee_strain, e) + e * slope;
+}
+
 }  // namespace dresskit
