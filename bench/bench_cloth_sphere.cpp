@@ -113,7 +113,7 @@ int run(int argc, char** argv) {
            "late_mean_max_strain,late_mean_max_shear_strain,late_worst_max_strain,"
            "late_worst_max_shear_strain\n";
   }
-  const int frames = static_cast<int>(scene.duration * scene.fps + 0.5);
+  const int frames = static_cast<int>(scene.run.duration * scene.run.fps + 0.5);
   for (const Setting& s : settings) {
     SimulationOptions o = scene.simulation;
     o.integrator = s.integrator;
@@ -128,7 +128,7 @@ int run(int argc, char** argv) {
     double cpu = 0.0;
     Strains late_mean, late_worst;  // over the frames of the last 0.5 s (max and shear_max)
     int late_frames = 0, frame = 1;
-    while (sim.time() < scene.duration - 1e-6 * s.dt) {
+    while (sim.time() < scene.run.duration - 1e-6 * s.dt) {
       const double t0 = bench::thread_cpu_seconds();
       const StepResult r = sim.step();
       cpu += bench::thread_cpu_seconds() - t0;
@@ -136,8 +136,8 @@ int run(int argc, char** argv) {
         stopped = "failed: " + r.failure;
         break;
       }
-      for (; sim.time() >= frame / scene.fps - 1e-6 * s.dt; ++frame) {  // frames this step passed
-        if (frame <= frames - scene.fps / 2 + 0.5) continue;  // the last 12 frames (0.5 s), untimed
+      for (; sim.time() >= frame / scene.run.fps - 1e-6 * s.dt; ++frame) {  // frames this step passed
+        if (frame <= frames - scene.run.fps / 2 + 0.5) continue;  // the last 12 frames (0.5 s), untimed
         const Strains e = strains(scene.model.springs, sim.positions());
         late_mean.max += e.max, late_mean.shear_max += e.shear_max, ++late_frames;
         late_worst.max = std::max(late_worst.max, e.max);

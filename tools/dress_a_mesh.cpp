@@ -18,6 +18,7 @@
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
 #include "segment_command.h"
+#include "simulate_command.h"
 #include "align_command.h"
 #include "dress_demo.h"
 #include "thickness_command.h"
@@ -226,235 +227,6 @@ int run_demo(const std::string& dir, const MannequinOptions& body_options,
   return 0;
 }
 
-// Runs a cloth scene for its duration, writing result.obj, optional frames and report.json. A failed
-// step (NaN, blow-up) stops the run: the last good state is written and the exit code is 4.
-int run_simulate(const std::string& scene_path, const std::string& dir, bool frames) {
-  using Clock = std::chrono::steady_clock;
-  ClothScene scene = load_cloth_scene(scene_path);
-  std::error_code ec;
-  if (!fs::create_directories(dir, ec) && ec) throw OutputError(dir + ": cannot create directory: " + ec.message());
-  ClothSimulator sim(scene.model, scene.simulation);
-  sim.set_pinned(scene.pins);
-  if (!scene.pin_motion.particles.empty()) sim.set_pin_motion(scene.pin_motion);
-  const double dt = scene.simulation.dt;
-  const bool sewing = scene.model.seams.size() > 0;
-  // Output: the cloth, with closed seams welded into single vertices when asked.
-  auto cloth_text = [&] {
-    if (!sewing || !scene.weld_seams) return cloth_obj_text(sim.positions(), scene.faces, scene.model.springs);
-    Eigen::MatrixX3d V;
-    Eigen::MatrixX3i F;
-    std::vector<int> to;
-    weld_seams(sim.positions(), scene.faces, scene.model.seams, scene.simulation.seam_tolerance, V, F, to);
-    return cloth_obj_text(V, F, scene.model.springs);
-  };
-  std::vector<double> energy;
-  std::string stopped = "duration reached", failure;
-  bool nan = false;
-  int steps = 0, frame_count = 0, cg_iterations = 0, retries = 0;
-  double smallest_dt = dt;
-  auto write_frame = [&](int index) {
-    char name[32];
-    std::snprintf(name, sizeof name, "frame_%05d.obj", index);
-    write_file_atomically((fs::path(dir) / name).string(), cloth_text());
-  };
-  // Layers: the gap of every double layer and the order of the layers, at every frame.
-  const bool layered = scene.model.layer_offset.size() > 1;
-  LayerGap gap_range;
-  gap_range.min = std::numeric_limits<double>::infinity();
-  int worst_order = 0;
-  auto track_layers = [&] {
-    if (!layered) return;
-    const LayerGap g = layer_gap(scene.model, sim.positions());
-    if (g.springs) {
-      gap_range.min = std::min(gap_range.min, g.min);
-      gap_range.max = std::max(gap_range.max, g.max);
-    }
-    worst_order = std::max(worst_order, layer_order(scene.model, sim.positions(), scene.simulation.colliders).violations);
-  };
-  // Body meshes: how each was read, and the cloth particles inside it at the start and at the end.
-  auto inside_count = [&](const Collider& c, double* deepest) {
-    int count = 0;
-    for (int i = 0; i < sim.positions().rows(); ++i) {
-      Eigen::Vector3d n;
-      const double d = c.distance(sim.positions().row(i).transpose(), &n);
-      if (d < 0.0) ++count;
-      if (deepest) *deepest = std::max(*deepest, -d);
-    }
-    return count;
-  };
-  json bodies = json::array();
-  for (const Collider& c : scene.simulation.colliders) {
-    if (c.kind != Collider::Kind::mesh) continue;
-    const MeshDistanceReport& b = c.body->report();
-    bodies.push_back({{"closed", b.closed}, {"boundary_edges", b.boundary_edges}, {"sign_method", b.sign_method},
-                      {"sign_disagreements", b.sign_disagreements},
-                      {"grid", {b.grid[0], b.grid[1], b.grid[2]}}, {"cell_m", b.cell}, {"band_m", b.band},
-                      {"build_seconds", b.build_seconds}, {"particles_inside_at_start", inside_count(c, nullptr)}});
-    if (!b.closed) {
-      std::cerr << "dress-a-mesh: " << scene_path << ": a body mesh is not closed (" << b.boundary_edges
-                << " boundary edges): inside is the majority of three ray parities\n";
-    }
-  }
-  int deep_pushes = 0;
-  // Cloth–cloth: edge–triangle crossings at the start, at every frame and at the end, and what the
-  // collision passes did; time per phase.
-  const int crossings_at_start = sim.intersections();
-  int worst_crossings = crossings_at_start;
-  SelfCollisionResult self_total;
-  int held_steps = 0;
-  double t_forces = 0, t_integrate = 0, t_constraints = 0, t_seams = 0, t_collide = 0, t_self = 0;
-  const auto t0 = Clock::now();
-  energy.push_back(sim.elastic_energy());
-  track_layers();
-  if (frames) write_frame(0);
-  while (sim.time() < scene.duration - 1e-6 * dt) {
-    const StepResult r = sim.step();
-    retries += r.retries;
-    if (!r.ok) {
-      failure = r.failure;
-      nan = r.failure.find("non-finite") != std::string::npos;
-      stopped = "failed: " + r.failure;
-      break;
-    }
-    cg_iterations += r.solver_iterations;
-    deep_pushes += r.deep_pushes;
-    self_total.proximity_pairs += r.self.proximity_pairs;
-    self_total.repulsions += r.self.repulsions;
-    self_total.ccd_collisions += r.self.ccd_collisions;
-    self_total.zones += r.self.zones;
-    self_total.zone_particles += r.self.zone_particles;
-    held_steps += r.self.held;
-    t_forces += r.force_seconds;
-    t_integrate += r.integrate_seconds;
-    t_constraints += r.constraint_seconds;
-    t_seams += r.seam_seconds;
-    t_collide += r.collision_seconds;
-    t_self += r.self_collision_seconds;
-    smallest_dt = std::min(smallest_dt, r.dt);
-    ++steps;
-    // Frame k is the first state at or after time k / fps.
-    if (sim.time() >= (frame_count + 1) / scene.fps - 1e-6 * dt) {
-      ++frame_count;
-      energy.push_back(sim.elastic_energy());
-      track_layers();
-      if (scene.simulation.self_collision) worst_crossings = std::max(worst_crossings, sim.intersections());
-      if (frames) write_frame(frame_count);
-    }
-  }
-  const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
-  write_file_atomically((fs::path(dir) / "result.obj").string(), cloth_text());
-  const int crossings_at_end = sim.intersections();
-  double closest = std::numeric_limits<double>::infinity();
-  for (const Collider& c : scene.simulation.colliders) {
-    Eigen::Vector3d n;
-    for (int i = 0; i < sim.positions().rows(); ++i) closest = std::min(closest, c.distance(sim.positions().row(i).transpose(), &n));
-  }
-  json garments = json::array();
-  for (const GarmentInfo& g : scene.garments) {
-    json entry = {{"fabric", g.fabric}, {"double_layer", g.double_layer}, {"first_vertex", g.first_vertex},
-                  {"vertices", g.vertices}};
-    if (g.double_layer) {
-      entry["thickness_mm"] = g.thickness.thickness * 1e3;
-      entry["thickness_min_mm"] = g.thickness.min * 1e3;
-      entry["thickness_max_mm"] = g.thickness.max * 1e3;
-    }
-    garments.push_back(entry);
-  }
-  const LayerGap gap = layer_gap(scene.model, sim.positions());
-  const LayerOrder order = layer_order(scene.model, sim.positions(), scene.simulation.colliders);
-  json report = {
-      {"scene", scene_path},
-      {"integrator", to_string(scene.simulation.integrator)},
-      {"linear_solver", scene.simulation.linear_solver == LinearSolver::ldlt ? "ldlt" : "cg"},
-      {"fabric", scene.fabric_name},
-      {"vertices", sim.positions().rows()},
-      {"springs", {{"structural", scene.model.springs.count(SpringType::structural)},
-                   {"shear", scene.model.springs.count(SpringType::shear)},
-                   {"bending", scene.model.springs.count(SpringType::bending)},
-                   {"layer_structural", scene.model.springs.count(SpringType::layer_structural)},
-                   {"layer_shear", scene.model.springs.count(SpringType::layer_shear)}}},
-      {"skipped", {{"zero_area_faces", scene.model.skipped_zero_area_faces},
-                   {"zero_length_springs", scene.model.skipped_zero_length_springs}}},
-      {"force_terms", {{"gravity", scene.simulation.gravity.norm() > 0},
-                       {"air_damping", scene.simulation.air_damping > 0},
-                       {"wind", scene.simulation.wind.norm() > 0},
-                       {"spring_damping", scene.simulation.spring_damping > 0},
-                       {"dynamic_stiffness", scene.simulation.dynamic_stiffness},
-                       {"strain_limiting", scene.simulation.strain_limiting},
-                       {"layer_limits", !scene.model.springs.limited.empty()},
-                       {"colliders", scene.simulation.colliders.size()}}},
-      {"dt", dt},
-      {"adaptive", scene.simulation.adaptive},
-      {"smallest_dt", smallest_dt},
-      {"step_retries", retries},
-      {"simulated_seconds", sim.time()},
-      {"steps", steps},
-      {"frames", frame_count},
-      {"wall_seconds", wall},
-      {"seconds_per_frame", frame_count ? wall / frame_count : 0.0},
-      {"cg_iterations", cg_iterations},
-      {"max_strain", sim.max_strain()},
-      {"mean_strain", sim.mean_strain()},
-      {"energy_history", energy},
-      {"final_residual", sim.static_residual()},
-      {"closest_collider_distance_m", std::isfinite(closest) ? json(closest) : json(nullptr)},
-      {"stopped_reason", stopped},
-      {"nan_detected", nan}};
-  if (!bodies.empty()) {
-    int k = 0;
-    for (const Collider& c : scene.simulation.colliders) {
-      if (c.kind != Collider::Kind::mesh) continue;
-      double deepest = 0.0;
-      bodies[k]["particles_inside_at_end"] = inside_count(c, &deepest);
-      bodies[k++]["deepest_inside_at_end_m"] = deepest;
-    }
-    report["bodies"] = bodies;
-    report["deep_pushes"] = deep_pushes;
-  }
-  report["self_collision"] = scene.simulation.self_collision;
-  report["intersections"] = {{"at_start", crossings_at_start}, {"at_end", crossings_at_end},
-                             {"max_over_frames", std::max(worst_crossings, crossings_at_end)}};
-  if (scene.simulation.self_collision) {
-    report["cloth_collisions"] = {{"thickness_m", scene.simulation.self_collision_options.thickness},
-                                  {"proximity_pairs", self_total.proximity_pairs},
-                                  {"repulsions", self_total.repulsions},
-                                  {"ccd_collisions", self_total.ccd_collisions},
-                                  {"impact_zones", self_total.zones},
-                                  {"impact_zone_particles", self_total.zone_particles},
-                                  {"steps_held", held_steps}};
-  }
-  report["phase_seconds"] = {{"forces_and_assembly", t_forces}, {"integrator", t_integrate},
-                             {"layer_guard_and_limits", t_constraints}, {"seams", t_seams},
-                             {"colliders", t_collide}, {"cloth_collisions", t_self}};
-  if (sewing) {
-    const SeamGaps g = seam_gaps(scene.model.seams, sim.positions(), scene.simulation.seam_tolerance);
-    int sewn = 0;
-    for (char c : sim.sewn()) sewn += c;
-    report["seams"] = {{"stitches", g.stitches}, {"closed", g.closed}, {"sewn", sewn},
-                       {"max_gap_mm", g.max * 1e3}, {"mean_gap_mm", g.mean * 1e3},
-                       {"tolerance_mm", scene.simulation.seam_tolerance * 1e3}, {"welded", scene.weld_seams}};
-  }
-  report["layers"] = scene.model.layer_offset.size();
-  report["garments"] = garments;
-  if (gap.springs) {
-    report["layer_gap_mm"] = {{"min", gap.min * 1e3}, {"mean", gap.mean * 1e3}, {"max", gap.max * 1e3},
-                              {"min_over_frames", gap_range.min * 1e3}, {"max_over_frames", gap_range.max * 1e3}};
-  }
-  if (layered) {
-    report["layer_order"] = {{"checked", order.checked}, {"violations", order.violations},
-                             {"max_violations_over_frames", std::max(worst_order, order.violations)}};
-  }
-  write_file_atomically((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
-  std::cout << "simulated " << steps << " steps (" << frame_count << " frames) in " << wall << " s; max strain "
-            << sim.max_strain() << "; " << stopped << "\n";
-  if (!failure.empty()) {
-    std::cerr << "dress-a-mesh: " << scene_path << ": simulation stopped after " << steps << " steps: " << failure
-              << " (last good state written)\n";
-    return static_cast<int>(ExitCode::simulation_failed);
-  }
-  return 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -505,13 +277,8 @@ int main(int argc, char** argv) {
   demo->add_option("--ease", garment_options.ease, "garment ease over the body [m]")
       ->capture_default_str();
 
-  std::string scene_path, simulate_dir;
-  bool simulate_frames = false;
-  auto* simulate = app.add_subcommand("simulate", "run a cloth scene (JSON, see docs/scenes.md); writes "
-                                                  "result.obj, report.json and optional frames");
-  simulate->add_option("SCENE", scene_path, "scene file (.json)")->required();
-  simulate->add_option("-o,--output", simulate_dir, "output directory")->required();
-  simulate->add_flag("--frames", simulate_frames, "also write frame_NNNNN.obj at the scene's fps");
+  cli::SimulateCommand simulate;
+  simulate.add_to(app);
 
   cli::ThicknessCommand thickness;
   thickness.add_to(app);
@@ -536,7 +303,7 @@ int main(int argc, char** argv) {
   try {
     if (*info) return run_info(info_args, info_json);
     if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
-    if (*simulate) return run_simulate(scene_path, simulate_dir, simulate_frames);
+    if (*simulate.command) return simulate.run();
     if (*thickness.command) return thickness.run();
     if (*segment.command) return segment.run();
     if (*align.command) return align.run();

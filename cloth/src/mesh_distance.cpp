@@ -120,10 +120,11 @@ MeshDistance::MeshDistance(const TriangleMesh& body, const MeshDistanceOptions& 
   }
 
   const TopologyReport topology = analyse_topology(body);
-  report_.closed = topology.closed;
   report_.boundary_edges = topology.num_boundary_edges;
-  report_.sign_method = topology.closed ? "ray parity along x, y and z (closed mesh)"
-                                        : "majority of the ray parities along x, y and z (not closed)";
+  report_.non_manifold_edges = topology.num_non_manifold_edges;
+  report_.closed = report_.boundary_edges == 0 && report_.non_manifold_edges == 0;
+  report_.sign_method = report_.closed ? "ray parity along x, y and z (watertight mesh)"
+                                       : "majority of the ray parities along x, y and z (not watertight)";
   report_.sign_disagreements = disagreements;
   report_.grid = size_;
   report_.cell = h_;

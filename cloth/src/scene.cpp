@@ -510,7 +510,8 @@ ClothScene load_cloth_scene(const std::string& path) {
              "max_strain_change", "newton_iterations", "newton_tolerance", "layer_separation", "layer_order_guard",
              "projective_iterations", "time_scheme", "projective_collisions", "self_collision", "cloth_thickness",
              "cloth_friction", "seam_tolerance", "weld_seams", "projective_lbfgs_history",
-             "projective_adaptive_weights"});
+             "projective_adaptive_weights", "stop_at_rest", "rest_mean_speed", "rest_max_speed",
+             "rest_time", "contact_travel"});
     SimulationOptions& o = scene.simulation;
     o.integrator = parse_integrator(s.text("integrator", "implicit"));
     const std::string solver = s.text("linear_solver", "cg");
@@ -519,8 +520,13 @@ ClothScene load_cloth_scene(const std::string& path) {
     else s.fail("'" + solver + "' is not cg or ldlt", "linear_solver");
     o.dt = s.number("dt", o.dt, 1e-7, 1.0);
     if (!(o.dt > 0)) s.fail("must be positive", "dt");
-    scene.duration = s.number("duration", scene.duration, 0.0, 1e5);
-    scene.fps = s.number("fps", scene.fps, 1e-3, 1e4);
+    scene.run.duration = s.number("duration", scene.run.duration, 0.0, 1e5);
+    scene.run.fps = s.number("fps", scene.run.fps, 1e-3, 1e4);
+    RestOptions& rest = scene.run.rest;
+    rest.enabled = s.boolean("stop_at_rest", rest.enabled);
+    rest.mean_speed = s.number("rest_mean_speed", rest.mean_speed, 0.0, 1e3);
+    rest.max_speed = s.number("rest_max_speed", rest.max_speed, 0.0, 1e3);
+    rest.time = s.number("rest_time", rest.time, 0.0, 1e5);
     o.gravity = s.vector<3>("gravity", o.gravity);
     // "strain_limit" alone switches strain limiting on, as in the example.
     o.strain_limit = s.number("strain_limit", o.strain_limit, 1e-6, 10.0);
@@ -533,7 +539,8 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.gust_frequency = s.number("gust_frequency", 0.0, 0.0, 1e4);
     o.collision_margin = s.number("collision_margin", o.collision_margin, 0.0, 1.0) * scale;
     o.cg_tolerance = s.number("cg_tolerance", o.cg_tolerance, 1e-14, 0.1);
-    o.adaptive = s.boolean("adaptive", false);
+    o.adaptive = s.boolean("adaptive", o.adaptive);
+    o.contact_travel = s.number("contact_travel", o.contact_travel, 0.0, 100.0);
     o.newton_iterations = static_cast<int>(s.number("newton_iterations", o.newton_iterations, 1, 1000));
     o.newton_tolerance = s.number("newton_tolerance", o.newton_tolerance, 1e-15, 1.0);
     o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);

@@ -33,7 +33,7 @@ TEST(ClothScene, TheIssuesExampleReadsAsWritten) {
   EXPECT_TRUE(s.simulation.strain_limiting);
   EXPECT_DOUBLE_EQ(s.simulation.strain_limit, 0.1);
   EXPECT_TRUE(s.simulation.dynamic_stiffness);
-  EXPECT_DOUBLE_EQ(s.duration, 2.0);
+  EXPECT_DOUBLE_EQ(s.run.duration, 2.0);
   EXPECT_NEAR(s.model.rest_positions.col(1).mean(), 0.5, 1e-12);
 }
 

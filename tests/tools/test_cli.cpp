@@ -290,7 +290,7 @@ TEST(Cli, SimulateOpenBodyAndClothStartingInsideTheBody) {
   r = run(dir, "simulate " + dir.file("open.json") + " -o " + dir.file("op"));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("not closed"), std::string::npos);
+  EXPECT_NE(r.err.find("not watertight"), std::string::npos);
   report = nlohmann::json::parse(slurp(dir.file("op/report.json")));
   EXPECT_FALSE(report["bodies"][0]["closed"].get<bool>());
   EXPECT_NE(report["bodies"][0]["sign_method"].get<std::string>().find("majority"),

@@ -22,10 +22,15 @@ struct MeshDistanceOptions {
 };
 
 struct MeshDistanceReport {
-  bool closed = false;         ///< the mesh is closed and manifold (mesh/topology.h)
+  /// Watertight: every edge has exactly two faces (no boundary, no edge of three or more faces), so
+  /// every ray crosses the surface an even number of times and ray parity tells inside exactly.
+  /// Pinched vertices and vertices used by no face do not matter here.
+  bool closed = false;
   int boundary_edges = 0;
-  /// How inside was told from outside: "ray parity along x, y and z (closed mesh)", or, for a mesh
-  /// that is not closed, the fallback "majority of the ray parities along x, y and z (not closed)".
+  int non_manifold_edges = 0;  ///< edges with more than two faces
+  /// How inside was told from outside: "ray parity along x, y and z (watertight mesh)", or, for a
+  /// mesh that is not watertight, the fallback "majority of the ray parities along x, y and z (not
+  /// watertight)".
   std::string sign_method;
   int sign_disagreements = 0;  ///< grid points where the three parities did not all agree
   Eigen::Vector3i grid = Eigen::Vector3i::Zero();  ///< points per axis

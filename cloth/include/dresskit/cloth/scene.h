@@ -6,6 +6,7 @@
 
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/run.h"
 #include "dresskit/cloth/simulator.h"
 
 namespace dresskit {
@@ -25,8 +26,7 @@ struct ClothScene {
   PinMotion pin_motion;            ///< driven pins (none when its particles are empty)
   bool weld_seams = true;          ///< output: closed particle-to-particle stitches as one vertex
   SimulationOptions simulation;
-  double duration = 2.0;           ///< [s] simulated
-  double fps = 24.0;               ///< frames per simulated second
+  RunOptions run;                  ///< duration, frames per second, stopping at rest
   std::string fabric_name;         ///< the first garment's
   std::vector<GarmentInfo> garments;  ///< from the body outwards
   Eigen::MatrixX3i faces;          ///< for output; empty for a chain (written as a polyline)

@@ -1,0 +1,61 @@
+#pragma once
+// Running a simulation: steps a ClothSimulator until a duration, a failed step or rest, hands each
+// frame to a callback and sums what the steps did. The one step loop of the toolkit (the CLI, the
+// demo's dressing and the benches call it).
+#include <functional>
+#include <string>
+
+#include "dresskit/cloth/simulator.h"
+
+namespace dresskit {
+
+/// When a run counts as at rest and stops early (the energy-based termination of a static drape):
+/// the cloth's kinetic energy, as the RMS particle speed √(2 E_kin / M), and its fastest particle
+/// both stay below their thresholds for `time` of simulated time.
+struct RestOptions {
+  bool enabled = true;
+  double mean_speed = 0.01;  ///< RMS particle speed [m/s]
+  double max_speed = 0.05;   ///< fastest free particle [m/s]
+  double time = 0.25;        ///< [s] both must hold this long
+  /// A run is never at rest before this much simulated time [s] (a cloth released from rest has no
+  /// speed at its first step).
+  double earliest = 0.1;
+};
+
+struct RunOptions {
+  double duration = 2.0;  ///< simulated time at most [s]
+  double fps = 24.0;      ///< frames per simulated second [1/s]
+  RestOptions rest;
+};
+
+/// What the steps of a run did, summed (times: CPU seconds of the stepping thread).
+struct StepTotals {
+  int steps = 0, retries = 0, cg_iterations = 0, collisions = 0, tunnelling = 0, deep_pushes = 0;
+  int held_steps = 0;  ///< steps whose cloth–cloth pass held every particle (its last resort)
+  double smallest_dt = 0.0;  ///< [s] (0 before any step)
+  SelfCollisionResult self;  ///< summed over the steps
+  double force_seconds = 0, integrate_seconds = 0, constraint_seconds = 0, seam_seconds = 0,
+         collision_seconds = 0, self_collision_seconds = 0;
+  void add(const StepResult& r);
+};
+
+struct RunResult {
+  bool ok = true;              ///< false: a step failed (the simulator keeps the last good state)
+  std::string stopped_reason;  ///< "at rest", "duration reached" or "failed: <why>"
+  std::string failure;         ///< the failed step's reason (empty when ok)
+  int frames = 0;              ///< frames handed out after the first (frame 0 is the start)
+  double rest_at = -1.0;       ///< simulated time the cloth came to rest [s] (−1: it did not)
+  double mean_speed = 0.0, max_speed = 0.0;  ///< at the end [m/s]
+  StepTotals totals;
+};
+
+/// RMS speed √(2 E_kin / M) and fastest free particle of the simulator's state [m/s].
+void cloth_speeds(const ClothSimulator& sim, double& mean_speed, double& max_speed);
+
+/// Steps sim until `duration`, a failed step or rest. on_frame(k) is called with k = 0 before the
+/// first step and with k = 1, 2, ... at the first state at or after k / fps; on_step (optional)
+/// after every successful step.
+RunResult run(ClothSimulator& sim, const RunOptions& options, const std::function<void(int)>& on_frame = {},
+              const std::function<void(const StepResult&)>& on_step = {});
+
+}  // namespace dresskit

@@ -1,0 +1,81 @@
+#include "dresskit/cloth/run.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace dresskit {
+
+void StepTotals::add(const StepResult& r) {
+  ++steps;
+  retries += r.retries;
+  cg_iterations += r.solver_iterations;
+  collisions += r.collisions;
+  tunnelling += r.tunnelling;
+  deep_pushes += r.deep_pushes;
+  held_steps += r.self.held;
+  smallest_dt = smallest_dt > 0.0 ? std::min(smallest_dt, r.dt) : r.dt;
+  self.proximity_pairs += r.self.proximity_pairs;
+  self.repulsions += r.self.repulsions;
+  self.ccd_collisions += r.self.ccd_collisions;
+  self.ccd_passes += r.self.ccd_passes;
+  self.zones += r.self.zones;
+  self.zone_particles += r.self.zone_particles;
+  self.tangled_particles = std::max(self.tangled_particles, r.self.tangled_particles);
+  force_seconds += r.force_seconds;
+  integrate_seconds += r.integrate_seconds;
+  constraint_seconds += r.constraint_seconds;
+  seam_seconds += r.seam_seconds;
+  collision_seconds += r.collision_seconds;
+  self_collision_seconds += r.self_collision_seconds;
+}
+
+void cloth_speeds(const ClothSimulator& sim, double& mean_speed, double& max_speed) {
+  const double mass = sim.model().mass.sum();
+  mean_speed = mass > 0.0 ? std::sqrt(2.0 * sim.kinetic_energy() / mass) : 0.0;
+  max_speed = 0.0;
+  const Eigen::MatrixX3d& v = sim.velocities();
+  for (Eigen::Index i = 0; i < v.rows(); ++i)
+    if (!sim.pinned()[i]) max_speed = std::max(max_speed, v.row(i).norm());
+}
+
+RunResult run(ClothSimulator& sim, const RunOptions& o, const std::function<void(int)>& on_frame,
+              const std::function<void(const StepResult&)>& on_step) {
+  RunResult result;
+  const double start = sim.time(), end = start + o.duration;
+  // A tolerance of a millionth of a step, so that a frame time reached by summing steps counts.
+  const double eps = 1e-6 * sim.options().dt;
+  if (on_frame) on_frame(0);
+  double calm_since = -1.0;
+  while (sim.time() < end - eps) {
+    const StepResult r = sim.step();
+    if (!r.ok) {
+      result.ok = false;
+      result.failure = r.failure;
+      result.stopped_reason = "failed: " + r.failure;
+      break;
+    }
+    result.totals.add(r);
+    if (on_step) on_step(r);
+    if (sim.time() >= start + (result.frames + 1) / o.fps - eps) {
+      ++result.frames;
+      if (on_frame) on_frame(result.frames);
+    }
+    if (o.rest.enabled) {
+      double mean = 0.0, fastest = 0.0;
+      cloth_speeds(sim, mean, fastest);
+      const bool calm = mean < o.rest.mean_speed && fastest < o.rest.max_speed;
+      if (!calm) calm_since = -1.0;
+      else if (calm_since < 0.0) calm_since = sim.time();
+      if (calm && sim.time() - start >= o.rest.earliest && sim.time() - calm_since >= o.rest.time - eps) {
+        result.rest_at = calm_since - start;
+        result.stopped_reason = "at rest";
+        break;
+      }
+    }
+  }
+  if (result.stopped_reason.empty()) result.stopped_reason = "duration reached";
+  cloth_speeds(sim, result.mean_speed, result.max_speed);
+  return result;
+}
+
+}  // namespace dresskit
