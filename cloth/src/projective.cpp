@@ -267,8 +267,6 @@ struct ClothSimulator::Projective {
   detail::InterleavedCholesky<float> single;
   detail::InterleavedCholesky<double> full;
   bool ok = false;
-  std::shared_ptr<Projective>
-      spare;  ///< the factorisation of the other step size (BDF2's start-up)
 };
 
 TimeScheme parse_time_scheme(const std::string& text) {
@@ -293,17 +291,21 @@ std::string to_string(TimeScheme scheme) {
   return "?";
 }
 
-// The factorisation for the step h in the matrix: the current one, the spare (BDF2 keeps backward
-// Euler's start-up matrix there), or a new one.
+// The factorisation for the step h in the matrix: the current one, one kept from a recent step
+// size (BDF2's backward Euler start-up, adaptive steps dt / 2^k), or a new one.
 void ClothSimulator::prepare_projective(double h, const std::vector<double>* weights) {
   const int n = static_cast<int>(x_.rows());
   const SpringSet& s = model_.springs;
   const double c = options_.air_damping;
-  if (projective_ && projective_->h != h && projective_->spare && projective_->spare->h == h) {
-    std::shared_ptr<Projective> current = projective_->spare;
-    projective_->spare.reset();
-    current->spare = projective_;
-    projective_ = current;
+  if (projective_ && projective_->h != h) {
+    for (auto it = projective_cache_.begin(); it != projective_cache_.end(); ++it) {
+      if ((*it)->h != h || (*it)->pinned != pinned_) continue;
+      std::shared_ptr<Projective> found = *it;
+      projective_cache_.erase(it);
+      projective_cache_.insert(projective_cache_.begin(), projective_);
+      projective_ = found;
+      break;
+    }
   }
   if (!weights && projective_ && projective_->h == h && projective_->pinned == pinned_ &&
       projective_->single_precision == options_.projective_single_precision)
@@ -415,7 +417,7 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
       }
     }
   }
-  // Adaptive weights keep no spare: a refactorisation for new weights (or a new step) keeps the
+  // Adaptive weights keep no other step sizes' factorisations: a refactorisation for new weights (or a new step) keeps the
   // old factor's ordering and symbolic analysis (same sparsity while the pins are the same).
   const bool reuse = p->adaptive && projective_ && projective_->ok &&
                      projective_->pinned == pinned_ &&
@@ -426,9 +428,11 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   }
   p->ok = p->single_precision ? (reuse ? p->single.refactor(A) : p->single.compute(A))
                               : (reuse ? p->full.refactor(A) : p->full.compute(A));
-  if (projective_ && projective_->h != h && !p->adaptive) {
-    p->spare = projective_;
-    p->spare->spare.reset();
+  if (p->adaptive) {
+    projective_cache_.clear();
+  } else if (projective_ && projective_->h != h) {
+    projective_cache_.insert(projective_cache_.begin(), projective_);
+    if (projective_cache_.size() > 4) projective_cache_.pop_back();
   }
   projective_ = p;
 }
@@ -506,8 +510,20 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     const int colliders = static_cast<int>(options_.colliders.size());
     for (int v = 0; v < n; ++v) {
       if (pinned_[v]) continue;
-      const double margin = options_.collision_margin + model_.layer_offset[model_.layer[v]];
+      // A particle that started the step inside a collider leaves it at a bounded speed.
+      const double margin = exit_margin(v, options_.collision_margin + model_.layer_offset[model_.layer[v]]);
       const Eigen::Vector3d p = Xc.row(v).transpose();
+      double& f = cf.force[v];
+      // Far from every collider by the last collider pass's lookups, and carrying no force: no
+      // contact, no lookup (the lookups were a quarter of the head-drop scene's time).
+      if (f == 0.0) {
+        bool far = true;
+        for (int ci = 0; ci < colliders && far; ++ci) far = distance_lower_bound(v, ci, p) > margin;
+        if (far) {
+          cf.collider[v] = -1;
+          continue;
+        }
+      }
       int nearest = -1;
       double gap = HUGE_VAL;
       Eigen::Vector3d normal;
@@ -516,7 +532,6 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
         const double g = options_.colliders[ci].distance(p, &nc) - margin;
         if (g < gap) gap = g, nearest = ci, normal = nc;
       }
-      double& f = cf.force[v];
       if (nearest != cf.collider[v]) f = 0.0;
       if (gap < 0.0) {
         f += P.inertia[v] * -gap;

@@ -471,7 +471,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     for (size_t k = 0; k < root.at("colliders").size(); ++k) {
       const Reader c(path, root.at("colliders")[k], "colliders[" + std::to_string(k) + "]");
       const std::string type = c.text("type", "");
-      const double friction = c.number("friction", 0.3, 0.0, 10.0);
+      const double friction = c.number("friction", type == "mesh" ? 0.5 : 0.3, 0.0, 10.0);
       if (type == "sphere") {
         c.allow({"type", "center", "radius", "friction"});
         scene.simulation.colliders.push_back(Collider::sphere(
@@ -513,7 +513,7 @@ ClothScene load_cloth_scene(const std::string& path) {
              "projective_adaptive_weights", "stop_at_rest", "rest_mean_speed", "rest_max_speed",
              "rest_time", "contact_travel"});
     SimulationOptions& o = scene.simulation;
-    o.integrator = parse_integrator(s.text("integrator", "implicit"));
+    if (s.has("integrator")) o.integrator = parse_integrator(s.text("integrator", ""));
     const std::string solver = s.text("linear_solver", "cg");
     if (solver == "cg") o.linear_solver = LinearSolver::conjugate_gradient;
     else if (solver == "ldlt") o.linear_solver = LinearSolver::ldlt;
@@ -528,11 +528,10 @@ ClothScene load_cloth_scene(const std::string& path) {
     rest.max_speed = s.number("rest_max_speed", rest.max_speed, 0.0, 1e3);
     rest.time = s.number("rest_time", rest.time, 0.0, 1e5);
     o.gravity = s.vector<3>("gravity", o.gravity);
-    // "strain_limit" alone switches strain limiting on, as in the example.
     o.strain_limit = s.number("strain_limit", o.strain_limit, 1e-6, 10.0);
-    o.strain_limiting = s.boolean("strain_limiting", s.has("strain_limit"));
+    o.strain_limiting = s.boolean("strain_limiting", o.strain_limiting);
     o.dynamic_stiffness = s.boolean("dynamic_stiffness", false);
-    o.air_damping = s.number("air_damping", 0.1, 0.0, 1e6);
+    o.air_damping = s.number("air_damping", o.air_damping, 0.0, 1e6);
     o.spring_damping = s.number("spring_damping", 0.0, 0.0, 1e3);
     o.wind = s.vector<3>("wind", o.wind);
     o.gust_amplitude = s.number("gust_amplitude", 0.0, 0.0, 100.0);
@@ -553,7 +552,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.self_collision_options.friction = s.number("cloth_friction", o.self_collision_options.friction, 0.0, 10.0);
     o.seam_tolerance = s.number("seam_tolerance", o.seam_tolerance / scale, 1e-9, 1.0) * scale;
     scene.weld_seams = s.boolean("weld_seams", scene.weld_seams);
-    const std::string scheme = s.text("time_scheme", "backward_euler");
+    const std::string scheme = s.text("time_scheme", to_string(o.time_scheme));
     try {
       o.time_scheme = parse_time_scheme(scheme);
     } catch (const InputError&) {

@@ -97,7 +97,11 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   double rest_sum = 0.0;
   for (double L : model_.springs.rest_length) rest_sum += L;
   layer_push_cap_ = 0.1 * rest_sum / std::max(1, model_.springs.size());
-  deep_push_cap_ = 0.5 * layer_push_cap_;
+  // A particle that started inside a collider leaves it at most at this speed [m/s]: 6 mean spring
+  // lengths a second, a quarter of the adaptive step's strain jump (0.05) per 1/240 s step, so
+  // that halving the step halves the push and a retried step can succeed (a push per step does
+  // not shrink with the step: a cloth that started inside a body failed at the smallest step).
+  deep_push_speed_ = 60.0 * layer_push_cap_;
   inv_rest_.resize(model_.springs.rest_length.size());
   for (std::size_t k = 0; k < inv_rest_.size(); ++k) inv_rest_[k] = 1.0 / model_.springs.rest_length[k];
   // Each particle's mean structural rest length (the mean over the cloth for one without any): the
@@ -133,6 +137,7 @@ ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
   if (options_.self_collision && model_.faces.rows() > 0)
     self_ = std::make_shared<SelfCollision>(model_.faces, n, joined_, options_.self_collision_options);
   find_contacts();
+  find_inside();
 }
 
 void ClothSimulator::set_pinned(const std::vector<int>& vertices) {
@@ -189,6 +194,7 @@ void ClothSimulator::set_state(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d
   history_ = History{};  // BDF2 must not reach back past a state set from outside
   contact_forces_ = ContactForces{};
   find_contacts();
+  find_inside();
 }
 
 double ClothSimulator::allowed_length(int s) const {
@@ -349,6 +355,27 @@ void ClothSimulator::add_penalty_forces(Eigen::MatrixX3d& f) const {
     f.row(p) += model_.mass(p) * a * penalty_profile(contacts_.depth[k], options_.penalty_thickness) *
                 contacts_.normal[k].transpose();
   }
+}
+
+double ClothSimulator::distance_lower_bound(int i, int c, const Eigen::Vector3d& p) const {
+  if (static_cast<int>(lookup_x_.size()) <= c) return -HUGE_VAL;
+  return lookup_d_(i, c) - 1.75 * (p - row(lookup_x_[c], i)).norm();
+}
+
+void ClothSimulator::find_inside() {
+  start_distance_ = Eigen::VectorXd::Constant(x_.rows(), HUGE_VAL);
+  for (int i = 0; i < x_.rows(); ++i) {
+    const double margin = options_.collision_margin + model_.layer_offset[model_.layer[i]];
+    for (const Collider& c : options_.colliders) {
+      Eigen::Vector3d n;
+      const double d = c.distance(row(x_, i), &n);
+      if (d < margin) start_distance_[i] = std::min(start_distance_[i], d);
+    }
+  }
+}
+
+double ClothSimulator::exit_margin(int i, double margin) const {
+  return std::min(margin, start_distance_[i] + deep_push_speed_ * dt_);
 }
 
 void ClothSimulator::find_contacts() {
@@ -608,6 +635,9 @@ double ClothSimulator::push_out(const Collider& c, double margin, int i) {
 
 void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
   contacts_.clear();
+  // Particles still within a collider's margin after this pass (a particle there is always looked
+  // up: its distance is below the margin).
+  start_distance_.setConstant(x_.rows(), HUGE_VAL);
   const double delta = options_.penalty_thickness;
   const int colliders = static_cast<int>(options_.colliders.size());
   // A particle's distance changes by at most √3 × its travel (the body grid's trilinear value has
@@ -636,35 +666,41 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
       Eigen::Vector3d unused;
       // Where the path first comes within the margin: t_in (1: at its end), f_in the distance − margin there.
       double t_in = 1.0, f_in = d - margin, d0 = 0.0;
+      bool through_from_margin = false;  // passed through, having started within the margin
       if (d >= margin) {
         // Ends outside, but a fast particle may have passed through a thin part (a finger, an arm
         // seen edge-on) within the step: continuous collision detection by conservative advancement
         // along the path (sphere tracing: the distance is a lower bound on how far the path can go
-        // before it meets the surface, with the grid's Lipschitz bound 1.75). Only paths long
-        // enough to reach the margin from either end are traced.
+        // before it meets the surface, with the grid's Lipschitz bound 1.75), looking for a point
+        // inside the collider. Only a path long enough to pass through from both ends' distances
+        // is traced, so particles resting or sliding on the surface are not; a trace takes at most
+        // 16 lookups (steps of at least 1/16 of the path).
         const double path = (x - x0).norm();
-        if (d - margin > 1.75 * path) continue;
+        if (d > 1.75 * path) continue;
         d0 = c.distance(x0, &unused);
-        if (d0 < margin || (d0 - margin) + (d - margin) > 1.75 * path) continue;
+        if (d0 < 0.0 || d0 + d > 1.75 * path) continue;
         t_in = -1.0;
-        for (double t = 0.0, f = d0 - margin; t < 1.0;) {
-          // Steps of at least 1/64 of the path: a grazing path (parallel to the surface just
-          // beyond the margin) takes at most 64 lookups.
-          t += std::max(f / (1.75 * path), 1.0 / 64.0);
+        for (double t = 0.0, f = d0; t < 1.0;) {
+          t += std::max(f / (1.75 * path), 1.0 / 16.0);
           if (t >= 1.0) break;
-          f = c.distance(x0 + t * (x - x0), &unused) - margin;
+          f = c.distance(x0 + t * (x - x0), &unused);
           if (f < 0.0) {
-            t_in = t, f_in = f;
+            t_in = t, f_in = f - margin;
             break;
           }
         }
         if (t_in < 0.0) continue;
         ++r.tunnelling;
+        through_from_margin = d0 < margin;
       } else {
         d0 = c.distance(x0, &unused);
       }
       ++r.collisions;
-      if (d0 >= margin) {
+      if (through_from_margin) {  // back to where it started, then out to the margin there
+        x_.row(i) = x0.transpose();
+        push_out(c, margin, i);
+        c.distance(row(x_, i), &n);
+      } else if (d0 >= margin) {
         // The entry point: the root of f(t) = distance(x0 + t (x − x0)) − margin on [0, 1] by the
         // Illinois variant of regula falsi (f is nearly linear along a short path: 2–4 lookups where
         // bisection took 10–20); lo stays outside (f ≥ 0), hi inside.
@@ -693,11 +729,14 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
       } else if (d0 >= 0.0) {  // started within the margin: back to it along the nearest normal
         push_out(c, margin, i);
       } else {
-        // Started inside the collider (cloth that began inside a body): out by at most the deep-push
-        // cap per step, so that a deep particle does not tear its springs; it is reported.
+        // Started inside the collider (cloth that began inside a body, or was pushed in): out at a
+        // bounded speed (deep_push_speed_), so that a deep particle does not tear its springs; it
+        // is reported, and the projective iterations move it no faster (exit_margin).
         const double push = margin - d;
-        if (push > deep_push_cap_) ++r.deep_pushes;
-        x_.row(i) += std::min(push, deep_push_cap_) * n.transpose();
+        const double cap = deep_push_speed_ * dt_;
+        if (push > cap) ++r.deep_pushes;
+        x_.row(i) += std::min(push, cap) * n.transpose();
+        start_distance_[i] = std::min(start_distance_[i], d + std::min(push, cap));
       }
       Eigen::Vector3d v = row(v_, i);
       const double vn = v.dot(n);
@@ -763,11 +802,37 @@ SettleResult ClothSimulator::settle(const SettleOptions& o) {
   return result;
 }
 
+ClothSimulator::Snapshot ClothSimulator::snapshot() const {
+  return {x_, v_, contact_forces_, start_distance_, contacts_, sewn_};
+}
+
+void ClothSimulator::restore(const Snapshot& s) {
+  x_ = s.x;
+  v_ = s.v;
+  contact_forces_ = s.contact_forces;
+  start_distance_ = s.start_distance;
+  contacts_ = s.contacts;
+  sewn_ = s.sewn;
+}
+
+double ClothSimulator::free_strain() const {
+  const SpringSet& s = model_.springs;
+  double worst = 0.0;
+  for (int k = 0; k < s.size(); ++k) {
+    if (s.type[k] != SpringType::structural || std::isfinite(start_distance_[s.i[k]]) ||
+        std::isfinite(start_distance_[s.j[k]]))
+      continue;
+    worst = std::max(worst, (x_.row(s.j[k]) - x_.row(s.i[k])).norm() * inv_rest_[k] - 1.0);
+  }
+  return worst;
+}
+
 StepResult ClothSimulator::try_step(double dt) {
   StepResult r;
   r.dt = dt;
   dt_ = dt;
-  const Eigen::MatrixX3d x0 = x_, v0 = v_;
+  const Snapshot start = snapshot();
+  const Eigen::MatrixX3d& x0 = start.x;
   move_pins(time_ + dt);
   using Clock = ThreadCpuClock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -782,6 +847,7 @@ StepResult ClothSimulator::try_step(double dt) {
   // collision projection last keeps every particle outside the colliders.
   r.integrate_seconds = since(t);
   const Eigen::MatrixX3d x_integrated = x_;
+  r.integrator_strain = free_strain();
   t = Clock::now();
   // The guard is for runs without cloth–cloth collisions: with them no layer can pass through
   // another, and its pushes made hems wrap around the next garment's (docs/cloth.md, Layers).
@@ -841,10 +907,7 @@ StepResult ClothSimulator::try_step(double dt) {
       r.failure = blow_up_report(x_integrated, time_ + dt);
     }
   }
-  if (!r.ok) {  // keep the last good state
-    x_ = x0;
-    v_ = v0;
-  }
+  if (!r.ok) restore(start);  // keep the last good state
   return r;
 }
 
@@ -865,10 +928,8 @@ double ClothSimulator::step_bound() {
       if (pinned_[i] || !(speed > 0.0)) continue;
       const double reach = contact_length_[i];
       double gap = std::numeric_limits<double>::infinity();
-      for (const Collider& c : options_.colliders) {
-        Eigen::Vector3d unused;
-        gap = std::min(gap, c.distance(row(x_, i), &unused));
-      }
+      for (int c = 0; c < static_cast<int>(options_.colliders.size()); ++c)
+        gap = std::min(gap, distance_lower_bound(i, c, row(x_, i)));
       const double margin = options_.collision_margin + model_.layer_offset[model_.layer[i]];
       const double travel = std::max(options_.contact_travel * reach, gap - margin - reach);
       bound = std::min(bound, travel / speed);
@@ -909,33 +970,41 @@ StepResult ClothSimulator::step() {
     if (r.ok) time_ += r.dt;
     return r;
   }
-  // dt_next_ is the controller's step (halved on failure, grown after calm steps); a step takes it
-  // or the contact and stability bound, whichever is smaller, never below dt_min.
+  // dt_next_ is the controller's step (halved on failure, doubled after calm steps); a step takes
+  // it or the contact and stability bound, whichever is smaller, rounded down to dt / 2^k (never
+  // below dt_min): projective dynamics factorises its matrix once per step size and keeps the
+  // factorisations of recent sizes, which a step chosen freely from the bound would change at
+  // every step.
   double dt = dt_next_;
   int retries = 0;
   const double bound = step_bound();
+  auto on_ladder = [&](double wanted) {
+    double h = options_.dt;
+    while (h > wanted && 0.5 * h >= options_.dt_min) h *= 0.5;
+    return h;
+  };
   for (;;) {
-    const double h = std::max(std::min(dt, bound), options_.dt_min);
-    const double strain_before = max_strain();
-    const Eigen::MatrixX3d x0 = x_, v0 = v_;
+    const double h = on_ladder(std::min(dt, bound));
+    const double strain_before = free_strain();
+    const Snapshot start = snapshot();
     StepResult r = try_step(h);
-    // Only a rise counts: the length limits bringing a strain back down is no reason to retry.
-    const bool jump = r.ok && max_strain() - strain_before > options_.max_strain_change;
+    // The integrator's own rise counts: the contact and constraint passes after it move particles
+    // by distances that do not shrink with the step (a cloth that started within a collider's
+    // margin is pushed out to it), so a smaller step would not change what they do; and the
+    // length limits bringing a strain back down is no reason to retry.
+    const bool jump = r.ok && r.integrator_strain - strain_before > options_.max_strain_change;
     if (r.ok && !jump) {
       r.retries = retries;
       time_ += h;
-      calm_steps_ = std::abs(max_strain() - strain_before) < 0.25 * options_.max_strain_change ? calm_steps_ + 1 : 0;
+      calm_steps_ = std::abs(r.integrator_strain - strain_before) < 0.25 * options_.max_strain_change ? calm_steps_ + 1 : 0;
       dt_next_ = std::max(dt, h);
       if (calm_steps_ >= 10) {
-        dt_next_ = std::min(options_.dt, 1.25 * dt_next_);
+        dt_next_ = std::min(options_.dt, 2.0 * dt_next_);
         calm_steps_ = 0;
       }
       return r;
     }
-    if (jump) {
-      x_ = x0;
-      v_ = v0;
-    }
+    if (jump) restore(start);
     if (h * 0.5 < options_.dt_min) {
       if (r.ok) {  // a strain jump at the smallest step: undone above, report it
         r.ok = false;

@@ -2,6 +2,7 @@
 
 #include "dresskit/cloth/collider.h"
 #include "dresskit/cloth/simulator.h"
+#include "cloth/bare_options.h"
 #include "dresskit/mesh/errors.h"
 
 using namespace dresskit;
@@ -34,8 +35,7 @@ TEST(Collider, SignedDistancesAndNormals) {
 }
 
 TEST(Collider, FrictionRemovesMuTimesTheNormalSpeedFromTheSlide) {
-  SimulationOptions o;
-  o.integrator = Integrator::symplectic_euler;
+  SimulationOptions o = test::bare_options(Integrator::symplectic_euler);
   o.gravity.setZero();
   o.dt = 1e-3;
   o.collision_margin = 0.0;

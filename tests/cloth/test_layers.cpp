@@ -4,6 +4,7 @@
 
 #include <fstream>
 
+#include "cloth/bare_options.h"
 #include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/scene.h"
 #include "dresskit/cloth/simulator.h"
@@ -20,8 +21,7 @@ ClothModel grid_cloth(int n, double height, const char* fabric = "gray-interlock
 }
 
 SimulationOptions sphere_options() {
-  SimulationOptions o;
-  o.dt = 1.0 / 240.0;
+  SimulationOptions o = test::bare_options(Integrator::implicit_euler);
   o.air_damping = 0.1;
   o.colliders.push_back(Collider::sphere({0, 0, 0}, 0.3));
   return o;

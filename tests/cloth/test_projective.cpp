@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <random>
 
+#include "cloth/bare_options.h"
 #include "dresskit/cloth/simulator.h"
 #include "interleaved_cholesky.h"
 
@@ -78,8 +79,7 @@ ClothModel oscillator(double L0, double k, double m) {
 // Largest position error over 0.5 s (about 2.5 periods), sampled every 1/200 s.
 double oscillator_error(TimeScheme scheme, double dt) {
   const double L0 = 0.1, k = 100.0, m = 0.1, A = 0.005, T = 0.5;
-  SimulationOptions o;
-  o.integrator = Integrator::projective;
+  SimulationOptions o = test::bare_options(Integrator::projective);
   o.time_scheme = scheme;
   o.gravity.setZero();
   o.dt = dt;
@@ -145,7 +145,7 @@ TEST(ProjectiveDynamics, ConvergedStepsMatchNewtonsMinimiser) {
     for (int variant : {0, 1, 2}) {  // local/global; L-BFGS; adaptive weights
       const int lbfgs = variant == 1 ? 5 : 0;
       if (variant > 0 && !single) continue;
-      SimulationOptions o;
+      SimulationOptions o = test::bare_options(Integrator::implicit_euler);
       o.dt = 1.0 / 60;
       o.air_damping = 0.1;
       o.newton_tolerance = 1e-13;
@@ -226,8 +226,7 @@ TEST(ProjectiveDynamics, TrBdf2IsStableAndDissipativeOnVeryStiffSpringsAtLargeSt
   for (double& k : model.springs.k_rest) k *= 1e4;
   model.springs.k_knee = model.springs.k_rest;
   for (bool adaptive : {false, true}) {
-    SimulationOptions o;
-    o.integrator = Integrator::projective;
+    SimulationOptions o = test::bare_options(Integrator::projective);
     o.time_scheme = TimeScheme::tr_bdf2;
     o.projective_adaptive_weights = adaptive;
     o.dt = 1.0 / 24.0;
@@ -252,9 +251,8 @@ TEST(ProjectiveDynamics, AdaptiveWeightsFollowTheStrainAndConvergeFaster) {
   const ClothModel model = build_cloth(make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1}),
                                        fabric_by_name("gray-interlock"));
   auto run = [&](bool adaptive, int iterations, int lbfgs = 0) {
-    SimulationOptions o;
+    SimulationOptions o = test::bare_options(Integrator::projective);
     o.projective_lbfgs_history = lbfgs;
-    o.integrator = Integrator::projective;
     o.time_scheme = TimeScheme::tr_bdf2;
     o.projective_adaptive_weights = adaptive;
     o.projective_iterations = iterations;
@@ -286,8 +284,7 @@ TEST(ProjectiveDynamics, Bdf2IsStableOnVeryStiffSpringsAtLargeSteps) {
   ClothModel model = build_cloth(grid, fabric_by_name("white-dots-on-blk"));
   for (double& k : model.springs.k_rest) k *= 1e4;
   model.springs.k_knee = model.springs.k_rest;
-  SimulationOptions o;
-  o.integrator = Integrator::projective;
+  SimulationOptions o = test::bare_options(Integrator::projective);
   o.time_scheme = TimeScheme::bdf2;
   o.dt = 1.0 / 24.0;
   o.air_damping = 0.1;
@@ -308,8 +305,7 @@ TEST(ProjectiveDynamics, CollisionsInsideTheIterationsKeepTheClothOutside) {
   const int n = 16;
   const ClothModel model = build_cloth(make_grid({0.6, 0.6}, {n, n}, {0, 0.35, 0}, {0, 1, 0}),
                                        fabric_by_name("gray-interlock"));
-  SimulationOptions o;
-  o.integrator = Integrator::projective;
+  SimulationOptions o = test::bare_options(Integrator::projective);
   o.projective_collisions = true;
   o.projective_iterations = 5;
   o.dt = 1.0 / 60;
@@ -332,8 +328,7 @@ TEST(ProjectiveDynamics, ContactForcesOfAClothAtRestOnAPlaneCarryItsWeight) {
   const int n = 12;
   const ClothModel model = build_cloth(make_grid({0.4, 0.4}, {n, n}, {0, 0.01, 0}, {0, 1, 0}),
                                        fabric_by_name("11oz-black-denim"));
-  SimulationOptions o;
-  o.integrator = Integrator::projective;
+  SimulationOptions o = test::bare_options(Integrator::projective);
   o.projective_iterations = 5;
   o.dt = 1.0 / 60;
   o.air_damping = 0.5;
@@ -364,8 +359,7 @@ TEST(ProjectiveDynamics, ClothOnASphereEndsWithinTheStrainLimitWithContactsInsid
   const ClothModel model = build_cloth(make_grid({1.0, 1.0}, {32, 32}, {0, 0.5, 0}, {0, 1, 0}),
                                        fabric_by_name("gray-interlock"));
   for (bool inside : {true, false}) {
-    SimulationOptions o;
-    o.integrator = Integrator::projective;
+    SimulationOptions o = test::bare_options(Integrator::projective);
     o.projective_iterations = 5;
     o.projective_collisions = inside;
     o.dt = 1.0 / 60;

@@ -5,6 +5,7 @@
 
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/cloth/spring_kernels.h"
+#include "cloth/bare_options.h"
 #include "dresskit/mesh/errors.h"
 
 using namespace dresskit;
@@ -107,8 +108,7 @@ TEST(Simulator, HangingChainMatchesTheClosedForm) {
                           Config{Integrator::implicit_euler, LinearSolver::ldlt},
                           Config{Integrator::newton, LinearSolver::conjugate_gradient}}) {
     const LinearSolver solver = c.solver;
-    SimulationOptions o;
-    o.integrator = c.integrator;
+    SimulationOptions o = test::bare_options(c.integrator);
     o.newton_tolerance = 1e-12;
     o.dt = 0.02;
     o.air_damping = 5.0;
@@ -131,8 +131,7 @@ TEST(Simulator, UndampedSymplecticEulerKeepsEnergyBounded) {
   const int n = 5;
   ClothModel model = chain(n, 0.1, 1000.0, 1000.0, std::vector<double>(n, 0.01));
   for (int k = 0; k < n; ++k) model.rest_positions.row(k) << 0.1 * k, 0.0, 0.0;
-  SimulationOptions o;
-  o.integrator = Integrator::symplectic_euler;
+  SimulationOptions o = test::bare_options(Integrator::symplectic_euler);
   o.dt = 1e-4;
   ClothSimulator sim(model, o);
   sim.set_pinned({0});
@@ -210,8 +209,7 @@ TEST(Simulator, StrainLimitingHoldsEveryStepAndPinsStayPut) {
 TEST(Simulator, BlowUpIsReportedAndTheLastGoodStateKept) {
   const int n = 6;
   const TriangleMesh g = make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1});
-  SimulationOptions o;
-  o.integrator = Integrator::symplectic_euler;
+  SimulationOptions o = test::bare_options(Integrator::symplectic_euler);
   o.dt = 1.0 / 24;  // far beyond the explicit limit for denim
   ClothSimulator sim(build_cloth(g, fabric_by_name("11oz-black-denim")), o);
   sim.set_pinned(top_corners(n));
@@ -239,6 +237,7 @@ TEST(Simulator, BadOptionsAndPinsAreRejected) {
   EXPECT_THROW(ClothSimulator(model, o), InputError);
   o = {};
   o.spring_damping = 0.01;  // modelled by implicit Euler, not by the minimising integrators
+  o.integrator = Integrator::implicit_euler;
   EXPECT_NO_THROW(ClothSimulator(model, o));
   for (Integrator integrator : {Integrator::newton, Integrator::projective}) {
     o.integrator = integrator;
@@ -259,8 +258,7 @@ TEST(Simulator, AdaptiveStepRecoversWhereAFixedStepBlowsUp) {
   const int n = 6;
   const TriangleMesh g = make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1});
   const ClothModel model = build_cloth(g, fabric_by_name("11oz-black-denim"));
-  SimulationOptions o;
-  o.integrator = Integrator::symplectic_euler;
+  SimulationOptions o = test::bare_options(Integrator::symplectic_euler);
   o.dt = 1.0 / 24;  // far beyond the explicit limit: fails at once without adaptation
   ClothSimulator fixed(model, o);
   fixed.set_pinned(top_corners(n));
@@ -358,7 +356,7 @@ TEST(Simulator, ForceLoopMatchesTheSpringKernelsWithEverySwitch) {
   x.row(springs.j[collapsed]) = x.row(springs.i[collapsed]);
   for (bool dynamic : {false, true}) {
     for (double damping : {0.0, 0.01}) {
-      SimulationOptions o;
+      SimulationOptions o = test::bare_options(Integrator::implicit_euler);
       o.gravity.setZero();
       o.dynamic_stiffness = dynamic;
       o.strain_limit = 0.05;
@@ -389,8 +387,7 @@ double settle_projective_chain(double load, int lbfgs) {
   std::vector<double> masses = {0.05, 0.02, 0.03, 0.01, 0.04, 0.02, 0.05, 0.08};
   for (double& m : masses) m *= load;
   const ClothModel model = chain(8, 0.1, 25.0, 100.0, masses);
-  SimulationOptions o;
-  o.integrator = Integrator::projective;
+  SimulationOptions o = test::bare_options(Integrator::projective);
   o.projective_lbfgs_history = lbfgs;
   o.projective_iterations = 200;
   o.newton_tolerance = 1e-13;

@@ -189,18 +189,32 @@ TEST(Cli, SimulateWritesResultFramesAndReport) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/frame_00005.obj")));
 }
 
+// Symplectic Euler at 1/25 s, far beyond its stability limit for denim: with a fixed step it blows
+// up (the last good state is written, the message names the spring, its strain and the time, exit
+// 4); named without "adaptive": false it takes the stable step it needs and finishes.
 TEST(Cli, SimulateBlowUpKeepsTheLastGoodStateAndExits4) {
   test::TempDir dir;
-  write(dir.file("stiff.json"), R"({"cloth": {"grid": {"size": [0.5, 0.5], "resolution": [8, 8]},
-    "fabric": "11oz-black-denim", "pins": [[0, 7], [7, 7]]},
-    "simulation": {"integrator": "symplectic", "dt": 0.04, "duration": 1.0}})");
-  const CliRun r = run(dir, "simulate " + dir.file("stiff.json") + " -o " + dir.file("out"));
+  const std::string cloth = R"("cloth": {"grid": {"size": [0.5, 0.5], "resolution": [8, 8]},
+    "fabric": "11oz-black-denim", "pins": [[0, 7], [7, 7]]})";
+  write(dir.file("stiff.json"), "{" + cloth + R"(, "simulation": {"integrator": "symplectic", "dt": 0.04,
+    "adaptive": false, "strain_limiting": false, "duration": 1.0}})");
+  CliRun r = run(dir, "simulate " + dir.file("stiff.json") + " -o " + dir.file("out"));
   EXPECT_EQ(r.code, 4) << r.err;
   EXPECT_EQ(lines(r.err), 1) << r.err;
+  for (const char* word : {"blow-up at t = 0.0800 s", "structural spring", "particles", "strained", "by the integrator"})
+    EXPECT_NE(r.err.find(word), std::string::npos) << word << " in " << r.err;
   const std::string obj = slurp(dir.file("out/result.obj"));
   EXPECT_EQ(obj.find("nan"), std::string::npos);
-  const auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));
+  auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));
   EXPECT_NE(report["stopped_reason"].get<std::string>().find("failed"), std::string::npos);
+
+  write(dir.file("named.json"), "{" + cloth + R"(, "simulation": {"integrator": "symplectic", "dt": 0.04,
+    "duration": 0.25}})");
+  r = run(dir, "simulate " + dir.file("named.json") + " -o " + dir.file("named"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  report = nlohmann::json::parse(slurp(dir.file("named/report.json")));
+  EXPECT_LT(report["smallest_dt"].get<double>(), 0.04 / 16);  // the stability bound's substeps
+  EXPECT_LE(report["max_strain"].get<double>(), 0.1 + 1e-3);
 }
 
 TEST(Cli, SimulateBadSceneExits2NamingTheKey) {
@@ -224,7 +238,8 @@ TEST(Cli, SimulateSewsPanelsAndReportsSeamsAndCrossings) {
     "fabric": "gray-interlock",
     "seams": [{"chains": [{"panel": 0, "side": "left"}, {"panel": 1, "side": "left", "reverse": true}]},
               {"pairs": [[[0, 8, 0], [1, 8, 8]], [[0, 8, 4], [1, 8, 4]], [[0, 8, 8], [1, 8, 0]]]}]},
-    "simulation": {"dt": 0.002, "duration": 1.0, "gravity": [0, 0, 0], "air_damping": 1.0, "strain_limit": 0.1}})");
+    "simulation": {"dt": 0.002, "adaptive": false, "duration": 1.0, "gravity": [0, 0, 0], "air_damping": 1.0,
+                   "strain_limit": 0.1}})");
   const CliRun r = run(dir, "simulate " + dir.file("tube.json") + " -o " + dir.file("out"));
   ASSERT_EQ(r.code, 0) << r.err;
   const auto report = nlohmann::json::parse(slurp(dir.file("out/report.json")));

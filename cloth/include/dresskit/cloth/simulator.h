@@ -29,11 +29,14 @@ Integrator parse_integrator(const std::string& text);
 std::string to_string(Integrator integrator);
 
 struct SimulationOptions {
-  Integrator integrator = Integrator::implicit_euler;
+  /// The defaults hold on every scene of the drop matrix (docs/benchmarks.md: cloth dropped onto real
+  /// bodies from up to 3.5 m, every fabric, any units): projective dynamics at up to 1/120 s with
+  /// adaptive steps, strain limited to 10 %.
+  Integrator integrator = Integrator::projective;
   LinearSolver linear_solver = LinearSolver::conjugate_gradient;  ///< implicit Euler only
-  double dt = 1.0 / 240.0;                   ///< time step [s], > 0
+  double dt = 1.0 / 120.0;                   ///< time step [s], > 0 (the largest, with adaptive stepping)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  ///< [m/s²]
-  double air_damping = 0.0;     ///< c in f = −c m (v − wind) [1/s]: mass-proportional, resolution independent
+  double air_damping = 0.1;     ///< c in f = −c m (v − wind) [1/s]: mass-proportional, resolution independent
   Eigen::Vector3d wind = Eigen::Vector3d::Zero();  ///< air velocity [m/s], acts through air_damping
   double gust_amplitude = 0.0;  ///< wind(t) = wind (1 + a sin 2π f t) [unitless]
   double gust_frequency = 0.0;  ///< f [Hz]
@@ -58,7 +61,7 @@ struct SimulationOptions {
   double seam_tolerance = 0.001;
   double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
   bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
-  bool strain_limiting = false;    ///< position correction after each step
+  bool strain_limiting = true;     ///< position correction after each step
   double strain_limit = 0.1;       ///< largest spring strain allowed by both mechanisms [unitless]
   int strain_limit_iterations = 100;  ///< cap on Gauss–Seidel sweeps of the correction
   double strain_limit_tolerance = 1e-4;  ///< springs within limit + this strain count as done
@@ -95,10 +98,12 @@ struct SimulationOptions {
   /// weight per spring from the law's knee (docs/cloth.md).
   bool projective_adaptive_weights = false;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
-  /// Adaptive time step: a failed step, or one whose largest strain changes by more than
-  /// max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm steps
-  /// (change below a quarter of that) the step grows by 1.25× back up to dt.
-  bool adaptive = false;
+  /// Adaptive time step: a failed step, or one whose integrator raises the largest strain by more
+  /// than max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm
+  /// steps (change below a quarter of that) the step doubles back up to dt. A step is also never
+  /// longer than the contact and stability bound (contact_travel; symplectic Euler's limit from the
+  /// stiffest spring and the lightest particle). Steps are dt / 2^k.
+  bool adaptive = true;
   double dt_min = 1e-6;            ///< [s]
   double max_strain_change = 0.05; ///< per step [unitless]
   /// Adaptive stepping near colliders: a particle within one spring length of a collider moves at
@@ -134,6 +139,7 @@ struct StepResult {
   SelfCollisionResult self;  ///< cloth–cloth collisions of this step
   int stitches_sewn = 0;     ///< stitches newly sewn (within the seam tolerance) in this step
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
+  double integrator_strain = 0.0;  ///< largest structural strain right after the integrator [unitless]
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
   /// CPU time (this thread's) of the step's phases [s] (of the last try when adaptive stepping retried): the
   /// integrator (forces and solve; of which forces and the system's assembly: force_seconds, implicit
@@ -234,9 +240,30 @@ class ClothSimulator {
   void move_pins(double t);
   /// Finds the particles in the colliders' penalty zones at the current positions (contacts_).
   void find_contacts();
+  /// A lower bound of particle i's distance from collider c at p, from its last lookup in collide()
+  /// (the distance changes by at most 1.75 × the travel); −∞ before the first [m].
+  double distance_lower_bound(int i, int c, const Eigen::Vector3d& p) const;
+  /// start_distance_ from the current positions (every particle, every collider).
+  void find_inside();
+  /// The distance from the colliders a particle must reach this step: `margin`, or for a particle
+  /// that started the step within a collider's margin (inside it, or placed there) its distance
+  /// then plus what it may exit by in a step (deep_push_speed_ × dt) [m].
+  double exit_margin(int i, double margin) const;
+  /// Per particle: its distance to the nearest collider at the start of the step when that is
+  /// within the margin (after the last collider pass, which leaves only particles that started
+  /// inside there), else +∞ [m].
+  Eigen::VectorXd start_distance_;
   void add_penalty_forces(Eigen::MatrixX3d& f) const;
   void build_pattern();
   StepResult try_step(double dt);
+  /// What a step changes and an undone step must put back.
+  struct Snapshot;
+  Snapshot snapshot() const;
+  void restore(const Snapshot& s);
+  /// Largest structural strain over the springs with neither end within a collider's margin at the
+  /// start of the step (the adaptive step's measure: contacts move particles by distances that a
+  /// smaller step does not shrink).
+  double free_strain() const;
   /// Adaptive stepping: the largest step that the contacts and (symplectic Euler) the stiffest
   /// spring allow at the current state [s] (infinity when nothing bounds it).
   double step_bound();
@@ -272,7 +299,7 @@ class ClothSimulator {
   Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
-  double deep_push_cap_ = 0.0;  ///< largest push out of a collider per step for a particle that started inside [m]
+  double deep_push_speed_ = 0.0;  ///< largest speed out of a collider for a particle that started inside [m/s]
   /// Particles in a penalty zone at the current positions, found by the collision pass that ends
   /// every step (so the next step's forces need no distance query): particle, collider, outward
   /// normal and depth into the zone [m].
@@ -292,6 +319,9 @@ class ClothSimulator {
   /// step size or the pins change (projective.cpp).
   struct Projective;
   std::shared_ptr<Projective> projective_;
+  /// The factorisations of up to four other step sizes, most recent first (adaptive steps, BDF2's
+  /// start-up); dropped when adaptive weights change the matrix.
+  std::vector<std::shared_ptr<Projective>> projective_cache_;
   /// Projective dynamics' contacts (projective_collisions): per particle the normal contact force
   /// [N] (0: none), its collider (−1: none) and its normal at the last pass, kept between steps.
   struct ContactForces {
@@ -299,6 +329,13 @@ class ClothSimulator {
     std::vector<int> collider;
     std::vector<Eigen::Vector3d> normal;
   } contact_forces_;
+  struct Snapshot {
+    Eigen::MatrixX3d x, v;
+    ContactForces contact_forces;
+    Eigen::VectorXd start_distance;
+    Contacts contacts;
+    std::vector<char> sewn;
+  };
   /// BDF2's history: the state at the start of the step before (x_{n−1}, v_{n−1}) and at the start of
   /// the last step tried, with their times; cleared by set_state.
   struct History {
