@@ -7,17 +7,12 @@
 #include <filesystem>
 #include <string>
 
+#include "dresskit/testing/data.h"
+
 namespace dresskit::test {
 
-inline std::string data_dir() {
-  const char* env = std::getenv("DRESSKIT_DATA_DIR");
-  return env && *env ? env : DRESSKIT_DEFAULT_DATA_DIR;
-}
-
-inline bool in_ci() {
-  const char* ci = std::getenv("CI");
-  return ci && std::string(ci) == "true";
-}
+inline std::string data_dir() { return testing::data_dir(); }
+inline bool in_ci() { return testing::in_ci(); }
 
 /// A fresh empty directory under the system temporary folder, removed by the destructor.
 class TempDir {

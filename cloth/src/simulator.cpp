@@ -491,7 +491,7 @@ double ClothSimulator::mean_strain() const {
 // listed springs (a double layer's inter-layer springs: always). Plain Gauss–Seidel converges slowly
 // when many springs are taut at once: the heavy hanging cloth of the tests needs up to ~470 sweeps in
 // its first fall (ordering the springs by distance from the pins gained only 3 %).
-void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all) {
+void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool hold_moved) {
   const SpringSet& s = model_.springs;
   const double limit = 1.0 + options_.strain_limit;
   const double done = limit + options_.strain_limit_tolerance;
@@ -545,7 +545,7 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
             s.type[k] == SpringType::layer_shear || !(active[s.i[k]] || active[s.j[k]]))
           continue;
         const double L0 = s.rest_length[k];
-        violated += correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0);
+        violated += correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0, hold_moved);
       }
     }
     for (std::size_t m = 0; m < s.limited.size(); ++m) {
@@ -635,9 +635,9 @@ double ClothSimulator::push_out(const Collider& c, double margin, int i) {
 
 void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
   contacts_.clear();
-  // Particles still within a collider's margin after this pass (a particle there is always looked
-  // up: its distance is below the margin).
-  start_distance_.setConstant(x_.rows(), HUGE_VAL);
+  // Particles still inside a collider after this pass (a particle there is always looked up: its
+  // distance is below the margin); the next step starts from these.
+  end_distance_.setConstant(x_.rows(), HUGE_VAL);
   const double delta = options_.penalty_thickness;
   const int colliders = static_cast<int>(options_.colliders.size());
   // A particle's distance changes by at most √3 × its travel (the body grid's trilinear value has
@@ -673,15 +673,17 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
         // along the path (sphere tracing: the distance is a lower bound on how far the path can go
         // before it meets the surface, with the grid's Lipschitz bound 1.75), looking for a point
         // inside the collider. Only a path long enough to pass through from both ends' distances
-        // is traced, so particles resting or sliding on the surface are not; a trace takes at most
-        // 16 lookups (steps of at least 1/16 of the path).
+        // is traced, so particles resting or sliding on the surface are not. Steps are at least a
+        // quarter of the margin (a part thinner than that is not resolved), and a trace takes at
+        // most 256 lookups.
         const double path = (x - x0).norm();
         if (d > 1.75 * path) continue;
         d0 = c.distance(x0, &unused);
         if (d0 < 0.0 || d0 + d > 1.75 * path) continue;
         t_in = -1.0;
+        const double least = std::max(0.25 * margin / path, 1.0 / 256.0);
         for (double t = 0.0, f = d0; t < 1.0;) {
-          t += std::max(f / (1.75 * path), 1.0 / 16.0);
+          t += std::max(f / (1.75 * path), least);
           if (t >= 1.0) break;
           f = c.distance(x0 + t * (x - x0), &unused);
           if (f < 0.0) {
@@ -730,13 +732,13 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
         push_out(c, margin, i);
       } else {
         // Started inside the collider (cloth that began inside a body, or was pushed in): out at a
-        // bounded speed (deep_push_speed_), so that a deep particle does not tear its springs; it
-        // is reported, and the projective iterations move it no faster (exit_margin).
-        const double push = margin - d;
-        const double cap = deep_push_speed_ * dt_;
-        if (push > cap) ++r.deep_pushes;
-        x_.row(i) += std::min(push, cap) * n.transpose();
-        start_distance_[i] = std::min(start_distance_[i], d + std::min(push, cap));
+        // bounded speed (deep_push_speed_), so that a deep particle does not tear its springs, and
+        // never deeper than it started, whatever the integrator did (the projective iterations
+        // hold it there too: exit_margin); it is reported.
+        const double target = std::min(margin, std::min(start_distance_[i], d0) + deep_push_speed_ * dt_);
+        if (target < margin) ++r.deep_pushes;
+        if (d < target) x_.row(i) += (target - d) * n.transpose();
+        end_distance_[i] = std::min(end_distance_[i], std::max(d, target));
       }
       Eigen::Vector3d v = row(v_, i);
       const double vn = v.dot(n);
@@ -803,14 +805,13 @@ SettleResult ClothSimulator::settle(const SettleOptions& o) {
 }
 
 ClothSimulator::Snapshot ClothSimulator::snapshot() const {
-  return {x_, v_, contact_forces_, start_distance_, contacts_, sewn_};
+  return {x_, v_, contact_forces_, contacts_, sewn_};
 }
 
 void ClothSimulator::restore(const Snapshot& s) {
   x_ = s.x;
   v_ = s.v;
   contact_forces_ = s.contact_forces;
-  start_distance_ = s.start_distance;
   contacts_ = s.contacts;
   sewn_ = s.sewn;
 }
@@ -863,7 +864,20 @@ StepResult ClothSimulator::try_step(double dt) {
   if (r.ok && model_.seams.size() > 0) sew(r);
   r.seam_seconds = since(t);
   t = Clock::now();
-  if (r.ok && !options_.colliders.empty()) collide(x0, r);
+  if (r.ok && !options_.colliders.empty()) {
+    const Eigen::MatrixX3d before = x_;
+    collide(x0, r);
+    // The collider pass stops particles on the body while their neighbours move on, stretching
+    // springs past the limit (projected by the pass after the limits). The limits once more, with
+    // the particles the pass moved held: only their free neighbours follow, so the pass's work is
+    // kept and the two do not fight (letting both ends move pulled the held particles back into
+    // the body and the rounds that followed fed energy into the cloth). Then the collider pass
+    // again for the few that followed into the margin, so a step always ends outside it.
+    if (options_.strain_limiting && before != x_) {
+      limit_strain(before, r, false, true);
+      collide(x0, r);
+    }
+  }
   r.collision_seconds = since(t);
   // Cloth–cloth last: whatever moved the particles before, the paths from x0 gain no intersection.
   // Its corrections can move a particle resting on a collider into the margin, squeeze a double
@@ -874,7 +888,7 @@ StepResult ClothSimulator::try_step(double dt) {
   for (int round = 0; round < 6 && r.ok && self_ && x_.allFinite(); ++round) {
     if (round > 0) {
       const Eigen::MatrixX3d start = x_;
-      if (!model_.springs.limited.empty() || options_.strain_limiting) limit_strain(start, r, false);
+      if (!model_.springs.limited.empty() || options_.strain_limiting) limit_strain(start, r, false, true);
       const double opened = model_.seams.size() > 0 ? sew(r) : 0.0;
       if (!options_.colliders.empty()) collide(x0, r);
       // A round that moved nothing ends them. (Stopping already when it moved nothing by more than
@@ -908,6 +922,7 @@ StepResult ClothSimulator::try_step(double dt) {
     }
   }
   if (!r.ok) restore(start);  // keep the last good state
+  else if (!options_.colliders.empty()) start_distance_ = end_distance_;
   return r;
 }
 

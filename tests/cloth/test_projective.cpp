@@ -352,9 +352,10 @@ TEST(ProjectiveDynamics, ContactForcesOfAClothAtRestOnAPlaneCarryItsWeight) {
 }
 
 // A cloth dropped onto a sphere at 1/60 s: with the contacts inside the iterations the supported
-// top is not pulled into the sphere by every step's solve, so after the strain limiter and the
-// collider pass the cloth ends within the strain limit; with contacts only after the step the
-// pass pushes the sunk top back out and stretches it past the limit (the 64² scene: 16 %).
+// top is not pulled into the sphere by every step's solve, so the cloth ends within the strain
+// limit; with contacts only after the step the collider pass pushes the sunk top back out and
+// stretches it past the limit (the limits that follow the pass, holding the pushed particles,
+// bring it from 16 % on the 64² scene to 11.2 % here, still over).
 TEST(ProjectiveDynamics, ClothOnASphereEndsWithinTheStrainLimitWithContactsInside) {
   const ClothModel model = build_cloth(make_grid({1.0, 1.0}, {32, 32}, {0, 0.5, 0}, {0, 1, 0}),
                                        fabric_by_name("gray-interlock"));
@@ -373,6 +374,6 @@ TEST(ProjectiveDynamics, ClothOnASphereEndsWithinTheStrainLimitWithContactsInsid
     for (int v = 0; v < sim.positions().rows(); ++v)
       ASSERT_GE(sim.positions().row(v).norm(), 0.3 + o.collision_margin - 1e-9);
     if (inside) EXPECT_LE(sim.max_strain(), o.strain_limit + 1e-3);
-    else EXPECT_GT(sim.max_strain(), o.strain_limit + 0.02);
+    else EXPECT_GT(sim.max_strain(), o.strain_limit + 0.01);
   }
 }

@@ -224,8 +224,9 @@ class ClothSimulator {
   double incremental_potential(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& v0) const;
   /// all: look at every spring; false: only those with an end moved since the last call ended with
-  /// every spring within its bounds.
-  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all);
+  /// every spring within its bounds. hold_moved: a cloth spring with one end moved since then and
+  /// one not moves only the other end (as the length-limited springs always do in later calls).
+  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool hold_moved = false);
   std::vector<char> limit_active_, limit_next_;  ///< limit_strain's active sets (work arrays)
   std::vector<char> limit_held_;  ///< limit_strain: moved by a contact pass since its last call
   Eigen::MatrixX3d limit_end_;   ///< the positions at the end of the last limit_strain
@@ -251,8 +252,8 @@ class ClothSimulator {
   double exit_margin(int i, double margin) const;
   /// Per particle: its distance to the nearest collider at the start of the step when that is
   /// within the margin (after the last collider pass, which leaves only particles that started
-  /// inside there), else +∞ [m].
-  Eigen::VectorXd start_distance_;
+  /// inside there), else +∞ [m]; end_distance_: the same at the end of the last collider pass.
+  Eigen::VectorXd start_distance_, end_distance_;
   void add_penalty_forces(Eigen::MatrixX3d& f) const;
   void build_pattern();
   StepResult try_step(double dt);
@@ -332,7 +333,6 @@ class ClothSimulator {
   struct Snapshot {
     Eigen::MatrixX3d x, v;
     ContactForces contact_forces;
-    Eigen::VectorXd start_distance;
     Contacts contacts;
     std::vector<char> sewn;
   };

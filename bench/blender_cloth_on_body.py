@@ -1,0 +1,428 @@
+"""Blender's built-in cloth dropped onto a human body's head, as an independent baseline.
+
+Builds the scene from scratch in dresskit's Y-up coordinates and converts them to Blender's Z-up
+ones ((x, y, z)_dresskit = (x, z, -y)_blender): the GarmentCode mean body (default
+/work/shared/data/bodies/gc_mean_all.obj: metres, Y up, feet at y = 0, head top at y = 1.72,
+47,500 triangles), read here line by line ('v' and 'f', polygons fanned into triangles) so that
+vertex order and axes are exact, as a collision object with Blender's default collision settings;
+a horizontal square grid (default 0.8 m, 60x60 vertices) centred at dresskit (0, 1.87, 0.04),
+15 cm above the head top, of total mass areal density x area (density from fabrics.json, default
+camel-ponte-roma 0.284 kg/m^2, so 0.18176 kg, 5.049e-5 kg per vertex); the cloth modifier with
+Blender's default settings except the vertex mass; frames 1..49 (2 s at 24 fps) or --seconds.
+Steps the frames one by one and measures wall-clock and process-CPU seconds per simulated frame
+(frames 2..end; the metrics are not timed), structural strain (grid edges) against the flat grid
+every frame, and at the last frame and every 6th frame the cloth vertices inside the body and the
+deepest one. The inside test does not use Blender's collision: a BVH tree of the body; a vertex in
+the body's bounding box is inside when at least 2 of 3 rays in fixed generic directions cross the
+body an odd number of times (hits counted by repeated ray casts, each restarted 1e-6 m past the
+last hit); its depth is its distance to the nearest body point. At the last frame it also counts
+the cloth's self-intersections (edge-triangle pairs that do not share a vertex).
+
+usage: blender -b --factory-startup --threads 1 -P bench/blender_cloth_on_body.py -- \
+           [--body OBJ] [--body-units M] [--fabric NAME] [--size M] [--resolution N] \
+           [--center X Y Z] [--seconds S] [--quality N] [--self-collision] [--air-damping A] \
+           [--gravity GZ] --out DIR [--csv FILE --label NAME]
+Writes DIR/blender_report.json and DIR/final.obj (final cloth in dresskit's Y-up axes, 1-based
+faces). Pin it, e.g. `taskset -c 1 blender ...`. With --csv, appends the run to FILE as one row
+(scripts/run_blender_body runs the default and the matched settings). Needs Debian's blender
+package (3.4.1 on bookworm); not used by the build or the tests.
+
+Caveats: as in bench/blender_cloth_on_sphere.py, Blender's air drag (-0.01 * air_damping * v per
+vertex) does not scale with mass, so with Blender's default air_damping 1.0 and 5e-5 kg per vertex
+the cloth barely falls in 2 s and may never reach the head; and Blender applies 0.001 * gravity per
+frame^2, i.e. 0.576 g at 24 fps. Options matching dresskit's defaults (air_damping 0.1 1/s,
+g = 9.81 m/s^2) for the default cloth (vertex mass m = 0.284 * 0.64 / 3600 kg):
+    --air-damping 0.000021 --gravity -17.03    (0.1 * m / (0.01 * 24);  -9.81 / (0.001 * 24^2))
+Other fabrics, sizes or resolutions change m and so the matched air damping. Strain is measured on
+the grid edges only (no shear). The inside test assumes a closed body (gc_mean_all is: every edge
+has two triangles); a cloth vertex resting on the body within Blender's collision distance
+(0.015 m by default) is outside, so "inside deeper than 2 mm" counts real penetrations.
+"""
+import argparse
+import json
+import os
+import sys
+import time
+
+import bpy
+import numpy as np
+from mathutils import Vector
+from mathutils.bvhtree import BVHTree
+
+DATA = "/work/shared/data"
+FPS = 24
+FRAME_START = 1
+INSIDE_EVERY = 6            # inside test every 6th frame (and the last)
+INSIDE_DEPTH = 0.002        # m, "inside" for the counts
+RAY_EPS = 1e-6              # m, step past a hit
+# Fixed generic (not axis-aligned, not symmetric) directions for the parity rays, dresskit axes.
+RAY_DIRS = ((0.5377, 0.8339, -0.1243), (-0.7071, 0.1492, 0.6912), (0.2315, -0.6129, -0.7555))
+
+
+def parse_args():
+    argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    p = argparse.ArgumentParser(prog="blender_cloth_on_body.py")
+    p.add_argument("--body", default=os.path.join(DATA, "bodies", "gc_mean_all.obj"))
+    p.add_argument("--body-units", type=float, default=1.0, help="metres per OBJ unit (default 1)")
+    p.add_argument("--fabric", default="camel-ponte-roma", help="name in fabrics.json")
+    p.add_argument("--fabrics", default=os.path.join(DATA, "fabrics", "fabrics.json"))
+    p.add_argument("--size", type=float, default=0.8, help="cloth side in m")
+    p.add_argument("--resolution", type=int, default=60, help="cloth vertices per side")
+    p.add_argument("--center", type=float, nargs=3, default=(0.0, 1.87, 0.04),
+                   help="cloth centre in dresskit axes (Y up), m")
+    p.add_argument("--seconds", type=float, default=2.0, help="simulated time (default 2 s = 48 frames)")
+    p.add_argument("--self-collision", action="store_true")
+    p.add_argument("--quality", type=int, default=None, help="cloth steps per frame (Blender default 5)")
+    p.add_argument("--air-damping", type=float, default=None, help="Blender air viscosity (default 1.0)")
+    p.add_argument("--gravity", type=float, default=None, help="scene gravity z in m/s^2 (default -9.81)")
+    p.add_argument("--out", required=True)
+    p.add_argument("--csv", default=None, help="append the run as one row to this CSV")
+    p.add_argument("--label", default="Blender", help="the row's setting name (with --csv)")
+    return p.parse_args(argv)
+
+
+def cli_threads():
+    argv = sys.argv[:sys.argv.index("--")] if "--" in sys.argv else sys.argv
+    for i, a in enumerate(argv[:-1]):
+        if a in ("--threads", "-t"):
+            return int(argv[i + 1])
+    return None
+
+
+def to_blender(p):
+    """dresskit (x, y, z), Y up -> Blender (x, -z, y), Z up."""
+    p = np.asarray(p, dtype=float)
+    return np.stack([p[..., 0], -p[..., 2], p[..., 1]], axis=-1)
+
+
+def to_dresskit(p):
+    """Blender (x, y, z) -> dresskit (x, z, -y)."""
+    p = np.asarray(p, dtype=float)
+    return np.stack([p[..., 0], p[..., 2], -p[..., 1]], axis=-1)
+
+
+def clear_scene():
+    for ob in list(bpy.data.objects):
+        bpy.data.objects.remove(ob, do_unlink=True)
+    for me in list(bpy.data.meshes):
+        bpy.data.meshes.remove(me)
+
+
+def read_obj(path, units):
+    verts, tris = [], []
+    with open(path) as f:
+        for line in f:
+            s = line.split()
+            if not s:
+                continue
+            if s[0] == "v":
+                verts.append([float(x) for x in s[1:4]])
+            elif s[0] == "f":
+                idx = []
+                for tok in s[1:]:
+                    i = int(tok.split("/")[0])
+                    idx.append(i - 1 if i > 0 else len(verts) + i)
+                for k in range(1, len(idx) - 1):
+                    tris.append((idx[0], idx[k], idx[k + 1]))
+    return np.array(verts) * units, np.array(tris, dtype=np.int64)
+
+
+def fabric_density(path, name):
+    with open(path) as f:
+        data = json.load(f)
+    for fab in data["fabrics"]:
+        if fab["name"] == name:
+            return float(fab["areal_density_kg_per_m2"])
+    raise SystemExit("fabric %r not in %s" % (name, path))
+
+
+def add_body(verts_dk, tris):
+    vb = to_blender(verts_dk)
+    me = bpy.data.meshes.new("Body")
+    me.from_pydata([tuple(v) for v in vb], [], [tuple(int(i) for i in t) for t in tris])
+    me.update()
+    ob = bpy.data.objects.new("Body", me)
+    bpy.context.scene.collection.objects.link(ob)
+    assert len(me.vertices) == len(vb) and len(me.polygons) == len(tris)
+    ob.modifiers.new("Collision", "COLLISION")
+    return ob, vb
+
+
+def add_grid(n, size, center_b):
+    # Blender 3.x: x_subdivisions is the number of vertices per side minus one (older versions: the
+    # number of vertices). Try both and assert the vertex count.
+    for subdiv in (n - 1, n):
+        bpy.ops.mesh.primitive_grid_add(x_subdivisions=subdiv, y_subdivisions=subdiv, size=size,
+                                        location=tuple(center_b))
+        ob = bpy.context.active_object
+        if len(ob.data.vertices) == n * n:
+            break
+        bpy.data.objects.remove(ob, do_unlink=True)
+    else:
+        raise RuntimeError("could not make a %dx%d grid" % (n, n))
+    me = ob.data
+    assert len(me.vertices) == n * n, len(me.vertices)
+    assert len(me.edges) == 2 * n * (n - 1), len(me.edges)
+    assert len(me.polygons) == (n - 1) ** 2 and all(len(p.vertices) == 4 for p in me.polygons)
+    assert abs(ob.dimensions.x - size) < 1e-6 and abs(ob.dimensions.y - size) < 1e-6
+    ob.name = "Cloth"
+    return ob, subdiv
+
+
+def world_coords(ob, depsgraph):
+    ob_eval = ob.evaluated_get(depsgraph)
+    me = ob_eval.to_mesh()
+    co = np.empty(len(me.vertices) * 3)
+    me.vertices.foreach_get("co", co)
+    ob_eval.to_mesh_clear()
+    co = co.reshape(-1, 3)
+    m = np.array(ob.matrix_world)
+    return co @ m[:3, :3].T + m[:3, 3]
+
+
+def strain(co, pairs, rest):
+    s = np.linalg.norm(co[pairs[:, 0]] - co[pairs[:, 1]], axis=1) / rest - 1.0
+    return float(s.max()), float(s.mean()), float(s.min())
+
+
+def crossings(tree, origin, direction):
+    n, o = 0, Vector(origin)
+    for _ in range(10000):
+        loc, _, _, _ = tree.ray_cast(o, direction)
+        if loc is None:
+            return n
+        n += 1
+        o = loc + direction * RAY_EPS
+    raise RuntimeError("ray from %s never left the body" % (tuple(origin),))
+
+
+def inside_depths(tree, lo, hi, co):
+    """Depths (m) of the cloth vertices inside the body (Blender coordinates)."""
+    dirs = [Vector(tuple(to_blender(d))).normalized() for d in RAY_DIRS]
+    cand = np.nonzero(np.all((co >= lo) & (co <= hi), axis=1))[0]
+    depths = []
+    for i in cand:
+        p = tuple(co[i])
+        odd = sum(crossings(tree, p, d) % 2 for d in dirs)
+        if odd >= 2:
+            depths.append(tree.find_nearest(Vector(p))[3])
+    return np.array(depths), len(cand)
+
+
+def seg_tri(p, q, a, b, c, eps=1e-12):
+    """Does segment pq cross triangle abc (Moller-Trumbore, parameter in [0, 1])?"""
+    d = q - p
+    e1, e2 = b - a, c - a
+    h = np.cross(d, e2)
+    det = e1.dot(h)
+    if abs(det) < eps:
+        return False
+    f = 1.0 / det
+    s = p - a
+    u = f * s.dot(h)
+    if u < 0.0 or u > 1.0:
+        return False
+    qv = np.cross(s, e1)
+    v = f * d.dot(qv)
+    if v < 0.0 or u + v > 1.0:
+        return False
+    t = f * e2.dot(qv)
+    return 0.0 <= t <= 1.0
+
+
+def self_intersections(co, quads):
+    tris = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+    tree = BVHTree.FromPolygons([tuple(v) for v in co], tris.tolist(), all_triangles=True, epsilon=0.0)
+    tri_pairs = set()
+    for i, j in tree.overlap(tree):
+        if i == j or set(tris[i]) & set(tris[j]):
+            continue
+        tri_pairs.add((min(i, j), max(i, j)))
+    edge_tri = set()
+    for i, j in tri_pairs:
+        for a, b in ((i, j), (j, i)):
+            ta, tb = tris[a], tris[b]
+            for k in range(3):
+                e = tuple(sorted((int(ta[k]), int(ta[(k + 1) % 3]))))
+                if seg_tri(co[e[0]], co[e[1]], co[tb[0]], co[tb[1]], co[tb[2]]):
+                    edge_tri.add((e, int(b)))
+    return len(tri_pairs), len(edge_tri)
+
+
+def write_obj(path, co, quads):
+    with open(path, "w") as f:
+        f.write("# Blender %s cloth, final frame, dresskit axes (Y up)\n" % bpy.app.version_string)
+        for x, y, z in co:
+            f.write("v %.7f %.7f %.7f\n" % (x, z, -y))
+        for q in quads:
+            f.write("f %d %d %d %d\n" % tuple(int(v) + 1 for v in q))
+
+
+def main():
+    args = parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    load_start = os.getloadavg()
+    frame_end = FRAME_START + int(round(args.seconds * FPS))
+    clear_scene()
+    scene = bpy.context.scene
+    scene.render.fps, scene.render.fps_base = FPS, 1.0
+    scene.frame_start, scene.frame_end = FRAME_START, frame_end
+
+    body_dk, body_tris = read_obj(args.body, args.body_units)
+    body, body_b = add_body(body_dk, body_tris)
+    body_tree = BVHTree.FromPolygons([tuple(v) for v in body_b], body_tris.tolist(), all_triangles=True)
+    lo, hi = body_b.min(axis=0), body_b.max(axis=0)
+
+    n_side = args.resolution
+    center_b = to_blender(args.center)
+    cloth, subdiv = add_grid(n_side, args.size, center_b)
+    density = fabric_density(args.fabrics, args.fabric)
+    total_mass = density * args.size * args.size
+    mod = cloth.modifiers.new("Cloth", "CLOTH")
+    cs, cc = mod.settings, mod.collision_settings
+    n = len(cloth.data.vertices)
+    cs.mass = total_mass / n
+    if args.air_damping is not None:
+        cs.air_damping = args.air_damping
+    if args.gravity is not None:
+        scene.gravity = (0.0, 0.0, args.gravity)
+    if args.quality is not None:
+        cs.quality = args.quality
+    cc.use_self_collision = args.self_collision
+    mod.point_cache.frame_start, mod.point_cache.frame_end = FRAME_START, frame_end
+
+    me = cloth.data
+    rest = np.empty(n * 3)
+    me.vertices.foreach_get("co", rest)
+    rest = rest.reshape(-1, 3)
+    edges = np.empty(len(me.edges) * 2, dtype=np.int64)
+    me.edges.foreach_get("vertices", edges)
+    edges = edges.reshape(-1, 2)
+    quads = np.empty(len(me.polygons) * 4, dtype=np.int64)
+    me.polygons.foreach_get("vertices", quads)
+    quads = quads.reshape(-1, 4)
+    rest_e = np.linalg.norm(rest[edges[:, 0]] - rest[edges[:, 1]], axis=1)
+
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    per_frame = []
+    sim_wall = sim_cpu = 0.0
+    first_wall = first_cpu = 0.0
+    metrics_wall = 0.0
+    start_y = None
+    for f in range(FRAME_START, frame_end + 1):
+        w0, c0 = time.perf_counter(), time.process_time()
+        scene.frame_set(f)
+        co = world_coords(cloth, depsgraph)   # forces the evaluated mesh, included in the timing
+        dw, dc = time.perf_counter() - w0, time.process_time() - c0
+        if f == FRAME_START:
+            first_wall, first_cpu = dw, dc
+            start_y = float(co[:, 2].mean())
+        else:
+            sim_wall += dw
+            sim_cpu += dc
+        m0 = time.perf_counter()
+        e_max, e_mean, e_min = strain(co, edges, rest_e)
+        fm = {"frame": f, "wall_s": dw, "cpu_s": dc, "structural_strain_max": e_max,
+              "structural_strain_mean": e_mean, "structural_strain_min": e_min,
+              "mean_y": float(co[:, 2].mean()), "lowest_y": float(co[:, 2].min())}
+        if (f - FRAME_START) % INSIDE_EVERY == 0 or f == frame_end:
+            depths, n_cand = inside_depths(body_tree, lo, hi, co)
+            fm.update(in_bbox=n_cand, inside=int(len(depths)),
+                      inside_2mm=int((depths > INSIDE_DEPTH).sum()),
+                      deepest_inside=float(depths.max()) if len(depths) else 0.0)
+        per_frame.append(fm)
+        metrics_wall += time.perf_counter() - m0
+
+    n_sim = frame_end - FRAME_START
+    final = per_frame[-1]
+    drop = float(start_y - co[:, 2].mean())
+    t0 = time.perf_counter()
+    tri_pairs, edge_tri = self_intersections(co, quads)
+    isect_wall = time.perf_counter() - t0
+    write_obj(os.path.join(args.out, "final.obj"), co, quads)
+    tested = [p for p in per_frame if "inside" in p]
+
+    bc = body.collision
+    report = {
+        "blender_version": bpy.app.version_string,
+        "threads_cli": cli_threads(),
+        "render_threads": scene.render.threads,
+        "cpu_affinity": sorted(os.sched_getaffinity(0)),
+        "loadavg_start": load_start, "loadavg_end": os.getloadavg(),
+        "body": {"path": os.path.abspath(args.body), "units_m": args.body_units,
+                 "vertices": len(body_b), "triangles": len(body_tris),
+                 "bbox_min_dresskit": to_dresskit(lo).tolist(), "bbox_max_dresskit": to_dresskit(hi).tolist()},
+        "fabric": args.fabric, "areal_density_kg_per_m2": density,
+        "cloth_size_m": args.size, "cloth_center_dresskit": list(args.center),
+        "quality": cs.quality, "self_collision": cc.use_self_collision,
+        "frames": [FRAME_START, frame_end], "simulated_frames": n_sim, "simulated_seconds": n_sim / FPS,
+        "fps": FPS,
+        "grid": {"vertices": n, "edges": len(edges), "quads": len(quads), "x_subdivisions_used": subdiv},
+        "vertex_mass": cs.mass, "total_mass": cs.mass * n,
+        "total_wall_s": sim_wall, "total_cpu_s": sim_cpu,
+        "seconds_per_frame_wall": sim_wall / n_sim, "seconds_per_frame_cpu": sim_cpu / n_sim,
+        "first_frame_wall_s": first_wall, "first_frame_cpu_s": first_cpu,
+        "metrics_wall_s_untimed": metrics_wall,
+        "final_structural_strain_max": final["structural_strain_max"],
+        "final_structural_strain_mean": final["structural_strain_mean"],
+        "final_structural_strain_min": final["structural_strain_min"],
+        "max_structural_strain_all_frames": max(p["structural_strain_max"] for p in per_frame),
+        "final_vertices_inside_body": final["inside"],
+        "final_vertices_inside_body_2mm": final["inside_2mm"],
+        "final_deepest_inside_m": final["deepest_inside"],
+        "max_inside_2mm_over_tested_frames": max(p["inside_2mm"] for p in tested),
+        "deepest_inside_over_tested_frames_m": max(p["deepest_inside"] for p in tested),
+        "inside_tested_frames": [p["frame"] for p in tested],
+        "start_mean_y": start_y, "final_mean_drop": drop, "final_lowest_y": final["lowest_y"],
+        "final_self_intersecting_triangle_pairs": tri_pairs,
+        "final_self_intersecting_edge_triangle_pairs": edge_tri,
+        "self_intersection_check_wall_s": isect_wall,
+        "cloth_settings": {k: getattr(cs, k) for k in (
+            "quality", "mass", "air_damping", "tension_stiffness", "compression_stiffness",
+            "shear_stiffness", "bending_stiffness", "tension_damping", "compression_damping",
+            "shear_damping", "bending_damping", "bending_model", "time_scale", "use_internal_springs",
+            "use_pressure", "use_dynamic_mesh", "use_sewing_springs")},
+        "collision_settings": {k: getattr(cc, k) for k in (
+            "use_collision", "collision_quality", "distance_min", "impulse_clamp", "use_self_collision",
+            "self_distance_min", "self_friction", "self_impulse_clamp", "friction")},
+        "collider_settings": {k: getattr(bc, k) for k in (
+            "thickness_outer", "thickness_inner", "damping", "cloth_friction", "use_culling")},
+        "gravity": list(scene.gravity),
+        "per_frame": per_frame,
+    }
+    with open(os.path.join(args.out, "blender_report.json"), "w") as f:
+        json.dump(report, f, indent=1)
+    if args.csv:
+        settings = "%s, vertex mass %g kg" % (args.fabric, cs.mass)
+        if args.quality is not None:
+            settings += ", quality %d" % cs.quality
+        if args.air_damping is not None:
+            settings += ", air damping %g" % cs.air_damping
+        if args.gravity is not None:
+            settings += ", gravity %g" % args.gravity
+        if cc.use_self_collision:
+            settings += ", self collision (distance %g)" % cc.self_distance_min
+        new_file = not os.path.exists(args.csv)
+        with open(args.csv, "a") as f:
+            if new_file:
+                f.write("setting,blender_settings,cpu_seconds_per_frame,wall_seconds_per_frame,"
+                        "simulated_seconds,frames,final_max_strain,max_strain_all_frames,inside_2mm_end,"
+                        "deepest_inside_mm_end,max_inside_2mm_over_frames,self_crossings_end,"
+                        "mean_drop_m,lowest_y_m\n")
+            f.write('"%s","%s",%.4f,%.4f,%.3f,%d,%.4f,%.4f,%d,%.1f,%d,%d,%.3f,%.3f\n' % (
+                args.label, settings, report["seconds_per_frame_cpu"], report["seconds_per_frame_wall"],
+                n_sim / FPS, n_sim, report["final_structural_strain_max"],
+                report["max_structural_strain_all_frames"], report["final_vertices_inside_body_2mm"],
+                1e3 * report["final_deepest_inside_m"], report["max_inside_2mm_over_tested_frames"],
+                edge_tri, drop, report["final_lowest_y"]))
+    print("RESULT %s: %.4f s/frame wall, %.4f s/frame cpu, final max strain %.4f (all frames %.4f), "
+          "inside >2 mm %d (max over frames %d), deepest %.1f mm, self crossings %d, "
+          "mean drop %.3f m, lowest y %.3f m" % (
+              args.out, report["seconds_per_frame_wall"], report["seconds_per_frame_cpu"],
+              report["final_structural_strain_max"], report["max_structural_strain_all_frames"],
+              report["final_vertices_inside_body_2mm"], report["max_inside_2mm_over_tested_frames"],
+              1e3 * report["final_deepest_inside_m"], edge_tri, drop, report["final_lowest_y"]))
+
+
+if __name__ == "__main__":
+    main()
