@@ -1,6 +1,7 @@
 #include "dresskit/cloth/scene.h"
 
 #include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,13 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
+
+/// A number as a person writes it: 1e-07, 0.5, 1000.
+std::string compact(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 // Reads one JSON object, naming every problem by file and key path.
 class Reader {
@@ -50,7 +58,7 @@ class Reader {
     if (!j_[key].is_number()) fail("must be a number", key);
     const double v = j_[key].get<double>();
     if (!std::isfinite(v) || v < lo || v > hi) {
-      fail(std::to_string(v) + " is outside " + std::to_string(lo) + " – " + std::to_string(hi), key);
+      fail(compact(v) + " is outside " + compact(lo) + " – " + compact(hi), key);
     }
     return v;
   }
@@ -400,7 +408,23 @@ Collider read_mesh_collider(const Reader& c, const fs::path& folder, double scal
   }
   if (c.has("up")) load.up = parse_up_axis(c.text("up", "+y"));
   if (!c.has("path")) c.fail("a mesh collider needs a path", "path");
-  TriangleMesh body = load_mesh((folder / c.text("path", "")).string(), load);
+  TriangleMesh body;
+  try {
+    body = load_mesh((folder / c.text("path", "")).string(), load);
+  } catch (const InputError& e) {
+    c.fail(e.what(), "path");
+  }
+  // A body read in the wrong units (millimetres as metres: 1,720 m tall; metres as millimetres:
+  // 1.7 mm) is refused, with the units that would make it a person's size.
+  const double extent = bounding_box(body).sizes().maxCoeff();
+  if (!(extent >= 0.01 && extent <= 100.0)) {
+    const std::string fits = units_for_body(extent / load.units.metres_per_unit);
+    c.fail("the mesh is " + compact(extent) + " m across in these units" +
+               (fits.empty() ? std::string(": check \"units\"") : "; with \"units\": \"" + fits + "\" it would be " +
+                                                    compact(extent / load.units.metres_per_unit *
+                                                            Units::parse(fits).metres_per_unit) + " m"),
+           "units");
+  }
   const Eigen::Vector3d shift = c.vector<3>("translate", Eigen::Vector3d::Zero()) * scale;
   body.V.rowwise() += shift.transpose();
   MeshDistanceOptions o;

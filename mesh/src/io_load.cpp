@@ -36,6 +36,14 @@ Units Units::parse(const std::string& text) {
   return {scale, text + " m"};
 }
 
+std::string units_for_body(double file_extent) {
+  for (const char* name : {"m", "dm", "cm", "mm"}) {
+    const double metres = file_extent * Units::parse(name).metres_per_unit;
+    if (metres >= 0.5 && metres <= 2.5) return name;
+  }
+  return "";
+}
+
 UpAxis parse_up_axis(const std::string& text) {
   static const std::pair<const char*, UpAxis> names[] = {
       {"+x", UpAxis::pos_x}, {"x", UpAxis::pos_x}, {"-x", UpAxis::neg_x}, {"+y", UpAxis::pos_y},

@@ -276,6 +276,34 @@ TEST(Cli, SimulateBadSeamsExit2NamingTheSeam) {
   }
 }
 
+// Bad values and bad bodies: one line naming the file, the key and the value (with the units that
+// would fit for a body read in the wrong ones), exit 2, no output folder.
+TEST(Cli, SimulateBadValuesAndBodiesExit2WithOneLine) {
+  test::TempDir dir;
+  save_mesh(test::sphere_mesh(Eigen::Vector3d::Zero(), 0.5, 0.05), dir.file("body.ply"));
+  write(dir.file("empty.obj"), "");
+  write(dir.file("words.obj"), "not a mesh at all\n");
+  const std::string cloth = R"("cloth": {"grid": {"size": [0.4, 0.4], "resolution": [6, 6]}, "fabric": "gray-interlock")";
+  for (const auto& [body_and_rest, expect] : std::vector<std::pair<std::string, std::vector<std::string>>>{
+           {R"(}, "colliders": [{"type": "mesh", "path": "body.ply", "units": "mm"}]})",
+            {"colliders[0].units", "0.001 m across", "\"units\": \"m\" it would be 1 m"}},
+           {R"(}, "colliders": [{"type": "mesh", "path": "body.ply", "units": 1000}]})",
+            {"colliders[0].units", "1000 m across", "\"units\": \"m\""}},
+           {R"(}, "colliders": [{"type": "mesh", "path": "empty.obj"}]})", {"colliders[0].path", "empty.obj"}},
+           {R"(}, "colliders": [{"type": "mesh", "path": "words.obj"}]})", {"colliders[0].path", "words.obj"}},
+           {R"(, "total_mass": -1}})", {"cloth.total_mass", "-1"}},
+           {R"(}, "simulation": {"dt": 0}})", {"simulation.dt", "0 is outside"}},
+           {R"(}, "simulation": {"dt": -0.01}})", {"simulation.dt", "-0.01"}},
+           {R"(}, "simulation": {"rest_time": -1}})", {"simulation.rest_time", "-1"}}}) {
+    write(dir.file("bad.json"), "{" + cloth + body_and_rest);
+    const CliRun r = run(dir, "simulate " + dir.file("bad.json") + " -o " + dir.file("out"));
+    EXPECT_EQ(r.code, 2) << body_and_rest << ": " << r.err;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    for (const std::string& word : expect) EXPECT_NE(r.err.find(word), std::string::npos) << word << " in " << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+  }
+}
+
 // A body mesh with a hole is reported and its inside taken by the named fallback; a cloth that
 // starts deep inside a closed body is pushed out a little each step without blowing up, and
 // reported.

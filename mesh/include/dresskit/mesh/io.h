@@ -22,6 +22,11 @@ struct Units {
 enum class UpAxis { pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
 /// "+x", "-x", "+y", "y", "-y", "+z", "z", "-z". Throws InputError naming the value otherwise.
 UpAxis parse_up_axis(const std::string& text);
+
+/// The named unit (m, dm, cm, mm) under which a body whose extent in its file's own units is
+/// `file_extent` measures between 0.5 m and 2.5 m (a person), or "" when none does: what to
+/// suggest when a forgotten --units makes a body 1,720 m or 1.7 mm tall.
+std::string units_for_body(double file_extent);
 std::string to_string(UpAxis axis);
 
 struct LoadOptions {
