@@ -2,8 +2,10 @@
 
 Builds the scene from scratch in dresskit's Y-up coordinates and converts them to Blender's Z-up
 ones ((x, y, z)_dresskit = (x, z, -y)_blender): the GarmentCode mean body (default
-/work/shared/data/bodies/gc_mean_all.obj: metres, Y up, feet at y = 0, head top at y = 1.72,
-47,500 triangles), read here line by line ('v' and 'f', polygons fanned into triangles) so that
+DATA/bodies/gc_mean_all.obj: metres, Y up, feet at y = 0, head top at y = 1.72, 47,500 triangles;
+DATA is the environment variable DRESSKIT_DATA_DIR if set, else ../shared/data beside the
+repository, i.e. <repo>/../shared/data, as for dresskit's tests; fabrics from
+DATA/fabrics/fabrics.json), read here line by line ('v' and 'f', polygons fanned into triangles) so that
 vertex order and axes are exact, as a collision object with Blender's default collision settings;
 a horizontal square grid (default 0.8 m, 60x60 vertices) centred at dresskit (0, 1.87, 0.04),
 15 cm above the head top, of total mass areal density x area (density from fabrics.json, default
@@ -16,15 +18,31 @@ deepest one. The inside test does not use Blender's collision: a BVH tree of the
 the body's bounding box is inside when at least 2 of 3 rays in fixed generic directions cross the
 body an odd number of times (hits counted by repeated ray casts, each restarted 1e-6 m past the
 last hit); its depth is its distance to the nearest body point. At the last frame it also counts
-the cloth's self-intersections (edge-triangle pairs that do not share a vertex).
+the cloth's self-intersections (edge-triangle pairs that do not share a vertex, among pairs of
+overlapping triangles).
+
+With --check OBJ it simulates nothing: it reads a cloth written by dresskit (dresskit's Y-up axes,
+metres, 'v' lines then triangular 'f' lines; vertex (i, j) of the grid is index j*N + i with
+N = --resolution, the order of the rest grid built here) and takes the same end-of-run measures
+with the same independent checks: vertices inside the body deeper than 2 mm and the deepest,
+self-intersections (triangles from the OBJ's faces), max and mean structural strain over the grid's
+axis-aligned edges (rest length size/(N-1); every such edge must be an edge of the OBJ's faces),
+mean drop (--center's y minus the final mean y) and lowest y.
 
 usage: blender -b --factory-startup --threads 1 -P bench/blender_cloth_on_body.py -- \
            [--body OBJ] [--body-units M] [--fabric NAME] [--size M] [--resolution N] \
            [--center X Y Z] [--seconds S] [--quality N] [--self-collision] [--air-damping A] \
            [--gravity GZ] --out DIR [--csv FILE --label NAME]
+       blender -b --factory-startup -P bench/blender_cloth_on_body.py -- --check CLOTH.obj \
+           [--body OBJ] [--body-units M] [--size M] [--resolution N] [--center X Y Z] \
+           [--out DIR] [--csv FILE --label NAME]
 Writes DIR/blender_report.json and DIR/final.obj (final cloth in dresskit's Y-up axes, 1-based
 faces). Pin it, e.g. `taskset -c 1 blender ...`. With --csv, appends the run to FILE as one row
-(scripts/run_blender_body runs the default and the matched settings). Needs Debian's blender
+(scripts/run_blender_body runs the default and the matched settings). With --check it prints one
+`CHECK ...` line, writes DIR/check_report.json if --out is given, and with --csv appends a row in
+the same columns, leaving empty what one final state cannot tell: the per-frame times (filled by
+the caller), simulated_seconds, frames and the over-frames maxima (scripts/bench_head_drop checks
+dresskit's result this way). Needs Debian's blender
 package (3.4.1 on bookworm); not used by the build or the tests.
 
 Caveats: as in bench/blender_cloth_on_sphere.py, Blender's air drag (-0.01 * air_damping * v per
@@ -36,7 +54,9 @@ g = 9.81 m/s^2) for the default cloth (vertex mass m = 0.284 * 0.64 / 3600 kg):
 Other fabrics, sizes or resolutions change m and so the matched air damping. Strain is measured on
 the grid edges only (no shear). The inside test assumes a closed body (gc_mean_all is: every edge
 has two triangles); a cloth vertex resting on the body within Blender's collision distance
-(0.015 m by default) is outside, so "inside deeper than 2 mm" counts real penetrations.
+(0.015 m by default) is outside, so "inside deeper than 2 mm" counts real penetrations. With
+--self-collision, Blender's default self distance (0.015 m) exceeds the default grid's spacing
+(0.8 / 59 = 0.0136 m), so neighbours beyond the springs repel from the first frame.
 """
 import argparse
 import json
@@ -49,7 +69,8 @@ import numpy as np
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
-DATA = "/work/shared/data"
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+DATA = os.environ.get("DRESSKIT_DATA_DIR") or os.path.normpath(os.path.join(REPO, "..", "shared", "data"))
 FPS = 24
 FRAME_START = 1
 INSIDE_EVERY = 6            # inside test every 6th frame (and the last)
@@ -75,10 +96,17 @@ def parse_args():
     p.add_argument("--quality", type=int, default=None, help="cloth steps per frame (Blender default 5)")
     p.add_argument("--air-damping", type=float, default=None, help="Blender air viscosity (default 1.0)")
     p.add_argument("--gravity", type=float, default=None, help="scene gravity z in m/s^2 (default -9.81)")
-    p.add_argument("--out", required=True)
+    p.add_argument("--check", default=None, metavar="OBJ",
+                   help="measure this cloth OBJ written by dresskit instead of simulating")
+    p.add_argument("--out", default=None, help="output directory (required unless --check)")
     p.add_argument("--csv", default=None, help="append the run as one row to this CSV")
     p.add_argument("--label", default="Blender", help="the row's setting name (with --csv)")
-    return p.parse_args(argv)
+    args = p.parse_args(argv)
+    if args.out is None and args.check is None:
+        p.error("--out is required (unless --check)")
+    if args.resolution < 2:
+        p.error("--resolution must be at least 2")
+    return args
 
 
 def cli_threads():
@@ -230,20 +258,28 @@ def seg_tri(p, q, a, b, c, eps=1e-12):
     return 0.0 <= t <= 1.0
 
 
-def self_intersections(co, quads):
-    tris = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+def quads_to_tris(quads):
+    return np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
+
+
+def self_intersections(co, tris):
+    """(triangle pairs sharing no vertex whose boxes overlap, edge-triangle crossings): an edge of one
+    triangle of an overlapping pair crossing the other triangle, the edge sharing no vertex with it
+    (the triangles may share one); each (edge, triangle) counted once."""
     tree = BVHTree.FromPolygons([tuple(v) for v in co], tris.tolist(), all_triangles=True, epsilon=0.0)
-    tri_pairs = set()
+    tri_pairs, edge_tri = set(), set()
     for i, j in tree.overlap(tree):
-        if i == j or set(tris[i]) & set(tris[j]):
+        if i == j:
             continue
-        tri_pairs.add((min(i, j), max(i, j)))
-    edge_tri = set()
-    for i, j in tri_pairs:
+        if not set(tris[i]) & set(tris[j]):
+            tri_pairs.add((min(i, j), max(i, j)))
         for a, b in ((i, j), (j, i)):
             ta, tb = tris[a], tris[b]
+            sb = set(int(v) for v in tb)
             for k in range(3):
                 e = tuple(sorted((int(ta[k]), int(ta[(k + 1) % 3]))))
+                if e[0] in sb or e[1] in sb or (e, int(b)) in edge_tri:
+                    continue
                 if seg_tri(co[e[0]], co[e[1]], co[tb[0]], co[tb[1]], co[tb[2]]):
                     edge_tri.add((e, int(b)))
     return len(tri_pairs), len(edge_tri)
@@ -258,8 +294,108 @@ def write_obj(path, co, quads):
             f.write("f %d %d %d %d\n" % tuple(int(v) + 1 for v in q))
 
 
+CSV_HEADER = ("setting,blender_settings,cpu_seconds_per_frame,wall_seconds_per_frame,"
+              "simulated_seconds,frames,final_max_strain,max_strain_all_frames,inside_2mm_end,"
+              "deepest_inside_mm_end,max_inside_2mm_over_frames,self_crossings_end,"
+              "mean_drop_m,lowest_y_m\n")
+
+
+def csv_quote(s):
+    return '"%s"' % str(s).replace('"', '""')
+
+
+def append_csv(path, row):
+    new_file = not os.path.exists(path) or os.path.getsize(path) == 0
+    with open(path, "a") as f:
+        if new_file:
+            f.write(CSV_HEADER)
+        f.write(row)
+
+
+def grid_edges(n):
+    """Axis-aligned edges of an n x n grid, vertex (i, j) = j*n + i."""
+    idx = np.arange(n * n).reshape(n, n)            # [j, i]
+    along_i = np.stack([idx[:, :-1].ravel(), idx[:, 1:].ravel()], axis=1)
+    along_j = np.stack([idx[:-1, :].ravel(), idx[1:, :].ravel()], axis=1)
+    return np.concatenate([along_i, along_j])
+
+
+def check(args):
+    """Measures a dresskit cloth OBJ (end of run) with the same independent checks as a simulation."""
+    t0 = time.perf_counter()
+    body_dk, body_tris = read_obj(args.body, args.body_units)
+    body_b = to_blender(body_dk)
+    body_tree = BVHTree.FromPolygons([tuple(v) for v in body_b], body_tris.tolist(), all_triangles=True)
+    lo, hi = body_b.min(axis=0), body_b.max(axis=0)
+
+    cloth_dk, tris = read_obj(args.check, 1.0)
+    n_side = args.resolution
+    n = n_side * n_side
+    if len(cloth_dk) != n:
+        raise SystemExit("%s: %d vertices, expected %d x %d = %d (--resolution)"
+                         % (args.check, len(cloth_dk), n_side, n_side, n))
+    if len(tris) == 0:
+        raise SystemExit("%s: no faces" % args.check)
+    if tris.min() < 0 or tris.max() >= n:
+        raise SystemExit("%s: a face index is out of range" % args.check)
+    if not np.all(np.isfinite(cloth_dk)):
+        raise SystemExit("%s: non-finite vertex coordinates" % args.check)
+    edges = grid_edges(n_side)
+    face_edges = set()
+    for t in tris:
+        for k in range(3):
+            a, b = int(t[k]), int(t[(k + 1) % 3])
+            face_edges.add((min(a, b), max(a, b)))
+    missing = sum((int(a), int(b)) not in face_edges for a, b in edges)
+    if missing:
+        raise SystemExit("%s: %d of the %d grid edges (vertex (i, j) = j*%d + i) are not edges of its "
+                         "faces: wrong --resolution or vertex order" % (args.check, missing, len(edges), n_side))
+
+    co = to_blender(cloth_dk)   # same axes, rays and body tree as a simulation's checks
+    rest_len = args.size / (n_side - 1)
+    e_max, e_mean, e_min = strain(co, edges, rest_len)
+    depths, n_cand = inside_depths(body_tree, lo, hi, co)
+    tri_pairs, edge_tri = self_intersections(co, tris)
+    start_y = float(args.center[1])
+    drop = start_y - float(cloth_dk[:, 1].mean())
+    lowest = float(cloth_dk[:, 1].min())
+    inside_2mm = int((depths > INSIDE_DEPTH).sum())
+    deepest = float(depths.max()) if len(depths) else 0.0
+    report = {
+        "check": os.path.abspath(args.check),
+        "blender_version": bpy.app.version_string,
+        "body": {"path": os.path.abspath(args.body), "units_m": args.body_units,
+                 "vertices": len(body_b), "triangles": len(body_tris)},
+        "cloth_size_m": args.size, "resolution": n_side, "cloth_center_dresskit": list(args.center),
+        "vertices": n, "triangles": len(tris), "grid_edges": len(edges), "rest_edge_m": rest_len,
+        "final_structural_strain_max": e_max, "final_structural_strain_mean": e_mean,
+        "final_structural_strain_min": e_min,
+        "final_vertices_in_body_bbox": n_cand, "final_vertices_inside_body": int(len(depths)),
+        "final_vertices_inside_body_2mm": inside_2mm, "final_deepest_inside_m": deepest,
+        "start_mean_y": start_y, "final_mean_y": float(cloth_dk[:, 1].mean()),
+        "final_mean_drop": drop, "final_lowest_y": lowest,
+        "final_self_intersecting_triangle_pairs": tri_pairs,
+        "final_self_intersecting_edge_triangle_pairs": edge_tri,
+        "check_wall_s": time.perf_counter() - t0,
+    }
+    if args.out:
+        os.makedirs(args.out, exist_ok=True)
+        with open(os.path.join(args.out, "check_report.json"), "w") as f:
+            json.dump(report, f, indent=1)
+    if args.csv:
+        append_csv(args.csv, '%s,%s,,,,,%.4f,,%d,%.1f,,%d,%.3f,%.3f\n' % (
+            csv_quote(args.label), csv_quote("check of %s" % os.path.abspath(args.check)),
+            e_max, inside_2mm, 1e3 * deepest, edge_tri, drop, lowest))
+    print("CHECK %s: final max strain %.4f (mean %.4f), inside >2 mm %d (inside %d), deepest %.1f mm, "
+          "self crossings %d, mean drop %.3f m, lowest y %.3f m" % (
+              args.check, e_max, e_mean, inside_2mm, len(depths), 1e3 * deepest, edge_tri, drop, lowest))
+
+
 def main():
     args = parse_args()
+    if args.check:
+        check(args)
+        return
     os.makedirs(args.out, exist_ok=True)
     load_start = os.getloadavg()
     frame_end = FRAME_START + int(round(args.seconds * FPS))
@@ -337,7 +473,7 @@ def main():
     final = per_frame[-1]
     drop = float(start_y - co[:, 2].mean())
     t0 = time.perf_counter()
-    tri_pairs, edge_tri = self_intersections(co, quads)
+    tri_pairs, edge_tri = self_intersections(co, quads_to_tris(quads))
     isect_wall = time.perf_counter() - t0
     write_obj(os.path.join(args.out, "final.obj"), co, quads)
     tested = [p for p in per_frame if "inside" in p]
@@ -402,19 +538,12 @@ def main():
             settings += ", gravity %g" % args.gravity
         if cc.use_self_collision:
             settings += ", self collision (distance %g)" % cc.self_distance_min
-        new_file = not os.path.exists(args.csv)
-        with open(args.csv, "a") as f:
-            if new_file:
-                f.write("setting,blender_settings,cpu_seconds_per_frame,wall_seconds_per_frame,"
-                        "simulated_seconds,frames,final_max_strain,max_strain_all_frames,inside_2mm_end,"
-                        "deepest_inside_mm_end,max_inside_2mm_over_frames,self_crossings_end,"
-                        "mean_drop_m,lowest_y_m\n")
-            f.write('"%s","%s",%.4f,%.4f,%.3f,%d,%.4f,%.4f,%d,%.1f,%d,%d,%.3f,%.3f\n' % (
-                args.label, settings, report["seconds_per_frame_cpu"], report["seconds_per_frame_wall"],
-                n_sim / FPS, n_sim, report["final_structural_strain_max"],
-                report["max_structural_strain_all_frames"], report["final_vertices_inside_body_2mm"],
-                1e3 * report["final_deepest_inside_m"], report["max_inside_2mm_over_tested_frames"],
-                edge_tri, drop, report["final_lowest_y"]))
+        append_csv(args.csv, '%s,%s,%.4f,%.4f,%.3f,%d,%.4f,%.4f,%d,%.1f,%d,%d,%.3f,%.3f\n' % (
+            csv_quote(args.label), csv_quote(settings), report["seconds_per_frame_cpu"],
+            report["seconds_per_frame_wall"], n_sim / FPS, n_sim, report["final_structural_strain_max"],
+            report["max_structural_strain_all_frames"], report["final_vertices_inside_body_2mm"],
+            1e3 * report["final_deepest_inside_m"], report["max_inside_2mm_over_tested_frames"],
+            edge_tri, drop, report["final_lowest_y"]))
     print("RESULT %s: %.4f s/frame wall, %.4f s/frame cpu, final max strain %.4f (all frames %.4f), "
           "inside >2 mm %d (max over frames %d), deepest %.1f mm, self crossings %d, "
           "mean drop %.3f m, lowest y %.3f m" % (

@@ -9,6 +9,7 @@ usage: scripts/plot_bench.py stability IN.csv OUT.png
        scripts/plot_bench.py alignment IN.csv OUT.png   (bench_alignment --only tradeoff --csv)
        scripts/plot_bench.py sphere A.csv,B.csv,... OUT.png (bench_cloth_sphere CSVs and
                                                        docs/data/blender_cloth_on_sphere.csv)
+       scripts/plot_bench.py drape IN.csv OUT.png       (bench_drape's CSV: the contact envelope)
 """
 import csv
 import sys
@@ -200,8 +201,41 @@ def sphere(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def drape(rows, out):
+    """Cases (rows) × settings (columns): green = held (finished, nothing inside, no crossing,
+    strain <= 12 %, fell), red = not; each cell shows the CPU seconds, or why it failed."""
+    cases = list(dict.fromkeys(r["case"] for r in rows))
+    settings = list(dict.fromkeys(r["setting"] for r in rows))
+    grid = [[float("nan")] * len(settings) for _ in cases]
+    fig, ax = plt.subplots(figsize=(1.0 + 0.62 * len(settings), 1.2 + 0.5 * len(cases)))
+    for r in rows:
+        i, j = cases.index(r["case"]), settings.index(r["setting"])
+        held = int(r["held"])
+        grid[i][j] = held
+        if r["stopped"].startswith("failed"):
+            text = "blow-up"
+        elif not held:
+            why = []
+            if int(r["inside_2mm"]) > 0:
+                why.append("in %s" % r["inside_2mm"])
+            if int(r["crossings"]) > 0:
+                why.append("x %s" % r["crossings"])
+            if float(r["max_strain"]) > 0.12:
+                why.append("%.0f%%" % (100 * float(r["max_strain"])))
+            text = "\n".join(why) or "no fall"
+        else:
+            text = "%.1f" % float(r["cpu_seconds"])
+        ax.text(j, i, text, ha="center", va="center", fontsize=7)
+    ax.imshow(grid, cmap="RdYlGn", vmin=0, vmax=1, aspect="auto", alpha=0.8)
+    ax.set_xticks(range(len(settings)), settings, rotation=60, ha="right", fontsize=8)
+    ax.set_yticks(range(len(cases)), cases, fontsize=8)
+    ax.set_title("Cloth dropped onto real bodies: held (green, CPU s) or not (red, why)", fontsize=10)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 if __name__ == "__main__":
     kind, src, out = sys.argv[1:4]
     rows = [r for path in src.split(",") for r in csv.DictReader(open(path))]
     {"stability": stability, "error": error, "heat": heat, "surface": surface,
-     "segmentation": segmentation, "alignment": alignment, "sphere": sphere}[kind](rows, out)
+     "segmentation": segmentation, "alignment": alignment, "sphere": sphere, "drape": drape}[kind](rows, out)

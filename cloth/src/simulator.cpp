@@ -491,7 +491,7 @@ double ClothSimulator::mean_strain() const {
 // listed springs (a double layer's inter-layer springs: always). Plain Gauss–Seidel converges slowly
 // when many springs are taut at once: the heavy hanging cloth of the tests needs up to ~470 sweeps in
 // its first fall (ordering the springs by distance from the pins gained only 3 %).
-void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool hold_moved) {
+void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool after_contact) {
   const SpringSet& s = model_.springs;
   const double limit = 1.0 + options_.strain_limit;
   const double done = limit + options_.strain_limit_tolerance;
@@ -517,17 +517,28 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
   held.assign(static_cast<std::size_t>(n), 0);
   if (!all) held = active;
   // Moves i and j so that their distance becomes `target`; false when it was within `slack` of it.
+  // A move of particle p that a collider pass of this step pushed out loses its part into the
+  // collider: the particle slides along the surface instead of being pulled back in.
+  auto slide = [&](int p, Eigen::Vector3d move) {
+    const Eigen::Vector3d n = row(contact_normal_, p);
+    const double into = move.dot(n);
+    if (into < 0.0) move -= into * n;
+    return move;
+  };
   auto correct = [&](int i, int j, double target, double slack_low, double slack_high,
-                     bool hold = false) {
+                     bool hold = false, bool sliding = false) {
     if (pinned_[i] && pinned_[j]) return false;
     const Eigen::Vector3d d = row(x_, j) - row(x_, i);
     const double L = d.norm();
     if ((L <= target + slack_high && L >= target - slack_low) || L == 0.0) return false;
     const Eigen::Vector3d c = (L - target) / L * d;  // moves i towards j by this much in total
     if (pinned_[i] || (hold && held[i] && !held[j])) {
-      x_.row(j) -= c.transpose();
+      x_.row(j) += (sliding ? slide(j, -c) : Eigen::Vector3d(-c)).transpose();
     } else if (pinned_[j] || (hold && held[j] && !held[i])) {
-      x_.row(i) += c.transpose();
+      x_.row(i) += (sliding ? slide(i, c) : c).transpose();
+    } else if (sliding) {
+      x_.row(i) += slide(i, 0.5 * c).transpose();
+      x_.row(j) += slide(j, -0.5 * c).transpose();
     } else {
       x_.row(i) += 0.5 * c.transpose();
       x_.row(j) -= 0.5 * c.transpose();
@@ -545,7 +556,7 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
             s.type[k] == SpringType::layer_shear || !(active[s.i[k]] || active[s.j[k]]))
           continue;
         const double L0 = s.rest_length[k];
-        violated += correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0, hold_moved);
+        violated += correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0, false, after_contact);
       }
     }
     for (std::size_t m = 0; m < s.limited.size(); ++m) {
@@ -750,6 +761,7 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
         else v -= (c.friction * -vn / t) * vt;   // kinetic: slides, slowed
       }
       v_.row(i) = v.transpose();
+      contact_normal_.row(i) = n.transpose();
     }
   }
 }
@@ -834,6 +846,7 @@ StepResult ClothSimulator::try_step(double dt) {
   dt_ = dt;
   const Snapshot start = snapshot();
   const Eigen::MatrixX3d& x0 = start.x;
+  contact_normal_.setZero(x_.rows(), 3);
   move_pins(time_ + dt);
   using Clock = ThreadCpuClock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
@@ -868,13 +881,13 @@ StepResult ClothSimulator::try_step(double dt) {
     const Eigen::MatrixX3d before = x_;
     collide(x0, r);
     // The collider pass stops particles on the body while their neighbours move on, stretching
-    // springs past the limit (projected by the pass after the limits). The limits once more, with
-    // the particles the pass moved held: only their free neighbours follow, so the pass's work is
-    // kept and the two do not fight (letting both ends move pulled the held particles back into
-    // the body and the rounds that followed fed energy into the cloth). Then the collider pass
-    // again for the few that followed into the margin, so a step always ends outside it.
+    // springs past the limit. The limits run once more with the pushed particles sliding along the
+    // body (their moves lose the part into it), so the two passes do not undo each other and a
+    // spring on a curved part shortens the only way it can, by sliding; then the collider pass for
+    // the few neighbours that followed into the margin, so a step ends outside the margin.
     if (options_.strain_limiting && before != x_) {
-      limit_strain(before, r, false, true);
+      const Eigen::MatrixX3d pushed = x_;
+      limit_strain(pushed, r, false, true);
       collide(x0, r);
     }
   }
@@ -888,7 +901,7 @@ StepResult ClothSimulator::try_step(double dt) {
   for (int round = 0; round < 6 && r.ok && self_ && x_.allFinite(); ++round) {
     if (round > 0) {
       const Eigen::MatrixX3d start = x_;
-      if (!model_.springs.limited.empty() || options_.strain_limiting) limit_strain(start, r, false, true);
+      if (!model_.springs.limited.empty() || options_.strain_limiting) limit_strain(start, r, false);
       const double opened = model_.seams.size() > 0 ? sew(r) : 0.0;
       if (!options_.colliders.empty()) collide(x0, r);
       // A round that moved nothing ends them. (Stopping already when it moved nothing by more than

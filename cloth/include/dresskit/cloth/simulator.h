@@ -224,9 +224,10 @@ class ClothSimulator {
   double incremental_potential(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x0,
                                const Eigen::MatrixX3d& v0) const;
   /// all: look at every spring; false: only those with an end moved since the last call ended with
-  /// every spring within its bounds. hold_moved: a cloth spring with one end moved since then and
-  /// one not moves only the other end (as the length-limited springs always do in later calls).
-  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool hold_moved = false);
+  /// every spring within its bounds. after_contact: a particle that a collider pass of this step
+  /// pushed out slides along the collider's surface instead of being pulled back into it.
+  void limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool after_contact = false);
+  Eigen::MatrixX3d contact_normal_;  ///< per particle: the normal of its last push in this step, or 0
   std::vector<char> limit_active_, limit_next_;  ///< limit_strain's active sets (work arrays)
   std::vector<char> limit_held_;  ///< limit_strain: moved by a contact pass since its last call
   Eigen::MatrixX3d limit_end_;   ///< the positions at the end of the last limit_strain
