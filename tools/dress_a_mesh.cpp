@@ -17,6 +17,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
+#include "dress_command.h"
 #include "segment_command.h"
 #include "simulate_command.h"
 #include "align_command.h"
@@ -279,6 +280,8 @@ int main(int argc, char** argv) {
 
   cli::SimulateCommand simulate;
   simulate.add_to(app);
+  cli::DressCommand dress;
+  dress.add_to(app);
 
   cli::ThicknessCommand thickness;
   thickness.add_to(app);
@@ -304,6 +307,7 @@ int main(int argc, char** argv) {
     if (*info) return run_info(info_args, info_json);
     if (*clean) return run_clean(clean_args, clean_out, clean_options, clean_json);
     if (*simulate.command) return simulate.run();
+    if (*dress.command) return dress.run();
     if (*thickness.command) return thickness.run();
     if (*segment.command) return segment.run();
     if (*align.command) return align.run();

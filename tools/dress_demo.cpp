@@ -13,24 +13,6 @@
 #include "dresskit/mesh/errors.h"
 
 namespace dresskit::cli {
-namespace {
-
-/// Appends b to a (vertices, faces, labels), naming b's labels prefix + its own names.
-void append(TriangleMesh& a, const TriangleMesh& b, const std::string& prefix) {
-  const Eigen::Index nv = a.V.rows(), nf = a.F.rows();
-  const int first_label = static_cast<int>(a.label_names.size());
-  a.V.conservativeResize(nv + b.V.rows(), 3);
-  a.V.bottomRows(b.V.rows()) = b.V;
-  a.F.conservativeResize(nf + b.F.rows(), 3);
-  a.F.bottomRows(b.F.rows()) = b.F.array() + static_cast<int>(nv);
-  a.labels.conservativeResize(nv + b.V.rows());
-  for (Eigen::Index i = 0; i < b.V.rows(); ++i)
-    a.labels(nv + i) =
-        b.labels.size() == b.V.rows() && b.labels(i) >= 0 ? first_label + b.labels(i) : -1;
-  for (const std::string& name : b.label_names) a.label_names.push_back(prefix + name);
-}
-
-}  // namespace
 
 DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
                            const TriangleMesh& trousers, const GarmentOptions& garments,
@@ -92,18 +74,12 @@ DressDemoResult dress_demo(const TriangleMesh& body, const BodyShape& shape,
   TriangleMesh worn_trousers = trousers, worn_tshirt = tshirt;
   worn_trousers.V = x.topRows(trousers.V.rows());
   worn_tshirt.V = x.bottomRows(tshirt.V.rows());
-  auto empty = [] {
-    TriangleMesh m;
-    m.V.resize(0, 3);
-    m.F.resize(0, 3);
-    return m;
-  };
-  result.outfit = empty();
-  append(result.outfit, worn_trousers, "trousers_");
-  append(result.outfit, worn_tshirt, "tshirt_");
-  result.dressed = empty();
-  append(result.dressed, body, "");
-  append(result.dressed, result.outfit, "");
+  result.outfit = empty_mesh();
+  append_mesh(result.outfit, worn_trousers, "trousers_");
+  append_mesh(result.outfit, worn_tshirt, "tshirt_");
+  result.dressed = empty_mesh();
+  append_mesh(result.dressed, body, "");
+  append_mesh(result.dressed, result.outfit, "");
   result.report = {
       {"garments",
        {"trousers (11oz-black-denim, waistband held)", "tshirt (gray-interlock, worn over)"}},

@@ -12,6 +12,8 @@ class Progress {
   ~Progress();  ///< ends the line if one was drawn
   /// Redraws at most ten times a second.
   void update(double done);
+  void set_total(double total) { total_ = total; }
+  bool terminal() const { return terminal_; }
   void finish();
 
  private:

@@ -1,7 +1,5 @@
 #include "segment_command.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cstdio>
@@ -12,6 +10,7 @@
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "output_folder.h"
 
 namespace dresskit::cli {
 namespace {
@@ -172,36 +171,14 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
        std::vector<int>(r.face_labels.data(), r.face_labels.data() + r.face_labels.size())}};
 }
 
-// Writes every file into a fresh temporary folder beside DIR, then moves them in; on failure the
-// temporary folder is removed and DIR is left as it was.
+// Writes the texts and meshes into DIR, all of them or none.
 void write_outputs(const std::string& dir,
                    const std::vector<std::pair<std::string, std::string>>& texts,
                    const std::vector<std::pair<std::string, TriangleMesh>>& meshes) {
-  const fs::path target = fs::absolute(dir).lexically_normal();
-  const fs::path temp = target.parent_path() /
-                        ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
-  std::error_code ec;
-  fs::remove_all(temp, ec);
-  if (!fs::create_directories(temp, ec) || ec)
-    throw OutputError(dir + ": cannot create directory: " + ec.message());
-  try {
+  write_folder(dir, [&](const fs::path& temp) {
     for (const auto& [name, text] : texts) write_file_atomically((temp / name).string(), text);
     for (const auto& [name, mesh] : meshes) save_mesh(mesh, (temp / name).string());
-    if (!fs::exists(target)) {
-      fs::rename(temp, target);
-      return;
-    }
-    if (!fs::is_directory(target)) throw OutputError(dir + ": exists and is not a directory");
-    for (const auto& entry : fs::directory_iterator(temp))
-      fs::rename(entry.path(), target / entry.path().filename());
-    fs::remove(temp);
-  } catch (const fs::filesystem_error& e) {
-    fs::remove_all(temp, ec);
-    throw OutputError(dir + ": " + e.code().message());
-  } catch (...) {
-    fs::remove_all(temp, ec);
-    throw;
-  }
+  });
 }
 
 }  // namespace

@@ -72,10 +72,6 @@ const std::vector<std::string>& loadable_extensions() {
   return ext;
 }
 
-namespace {
-
-
-// The proper rotation that takes the source up axis to +Y.
 Eigen::Matrix3d up_rotation(UpAxis up) {
   Eigen::Matrix3d R;
   switch (up) {
@@ -88,6 +84,13 @@ Eigen::Matrix3d up_rotation(UpAxis up) {
   }
   return R;
 }
+
+Eigen::MatrixX3d to_file_frame(const Eigen::MatrixX3d& V, const LoadOptions& options) {
+  // Loading applied x_toolkit = s R x_file (row vectors: V_toolkit = s V_file Rᵀ); R is a rotation.
+  return V * up_rotation(options.up) / options.units.metres_per_unit;
+}
+
+namespace {
 
 // The `v` lines of an OBJ file, in order and in double precision. Throws on a malformed or
 // non-finite coordinate, naming the line.

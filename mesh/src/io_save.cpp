@@ -203,17 +203,10 @@ std::string stl_bytes(const TriangleMesh& m) {
   return out;
 }
 
-// glTF 2 (binary or text + .bin) and FBX through assimp's exporters.
-void write_with_assimp(const TriangleMesh& m, const std::string& path, const char* format) {
-  aiScene scene;  // owns everything below and frees it in its destructor
-  scene.mRootNode = new aiNode("dresskit");
-  scene.mRootNode->mNumMeshes = 1;
-  scene.mRootNode->mMeshes = new unsigned[1]{0};
-  scene.mNumMaterials = 1;
-  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
-  scene.mNumMeshes = 1;
-  scene.mMeshes = new aiMesh*[1]{new aiMesh()};
-  aiMesh* mesh = scene.mMeshes[0];
+// One mesh of an assimp scene: positions and normals in single precision, colours from labels.
+aiMesh* assimp_mesh(const TriangleMesh& m, const std::string& name) {
+  aiMesh* mesh = new aiMesh();
+  mesh->mName = aiString(name);
   mesh->mMaterialIndex = 0;
   mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
   mesh->mNumVertices = static_cast<unsigned>(m.num_vertices());
@@ -237,6 +230,28 @@ void write_with_assimp(const TriangleMesh& m, const std::string& path, const cha
     mesh->mFaces[f].mNumIndices = 3;
     mesh->mFaces[f].mIndices = new unsigned[3];
     for (int k = 0; k < 3; ++k) mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(m.F(f, k));
+  }
+  return mesh;
+}
+
+// glTF 2 (binary or text + .bin) and FBX through assimp's exporters: one node per mesh, named.
+void write_with_assimp(const std::vector<NamedMesh>& meshes, const std::string& path, const char* format) {
+  aiScene scene;  // owns everything below and frees it in its destructor
+  const unsigned n = static_cast<unsigned>(meshes.size());
+  scene.mRootNode = new aiNode("dresskit");
+  scene.mNumMaterials = 1;
+  scene.mMaterials = new aiMaterial*[1]{new aiMaterial()};
+  scene.mNumMeshes = n;
+  scene.mMeshes = new aiMesh*[n];
+  scene.mRootNode->mNumChildren = n;
+  scene.mRootNode->mChildren = new aiNode*[n];
+  for (unsigned k = 0; k < n; ++k) {
+    scene.mMeshes[k] = assimp_mesh(meshes[k].mesh, meshes[k].name);
+    aiNode* node = new aiNode(meshes[k].name);
+    node->mParent = scene.mRootNode;
+    node->mNumMeshes = 1;
+    node->mMeshes = new unsigned[1]{k};
+    scene.mRootNode->mChildren[k] = node;
   }
   Assimp::Exporter exporter;
   if (exporter.Export(&scene, format, path) != aiReturn_SUCCESS) {
@@ -262,13 +277,20 @@ void save_mesh(const TriangleMesh& mesh, const std::string& path) {
   else if (ext == "ply") write = [&](const std::string& tmp) { write_bytes(tmp, ply_bytes(mesh)); };
   else if (ext == "off") write = [&](const std::string& tmp) { write_bytes(tmp, off_text(mesh)); };
   else if (ext == "stl") write = [&](const std::string& tmp) { write_bytes(tmp, stl_bytes(mesh)); };
-  else if (ext == "glb") write = [&](const std::string& tmp) { write_with_assimp(mesh, tmp, "glb2"); };
-  else if (ext == "gltf") write = [&](const std::string& tmp) { write_with_assimp(mesh, tmp, "gltf2"); };
-  // ASCII FBX: the binary FBX exporter of assimp 5.2 writes files that its own reader rejects
-  // ("FBX-Tokenize block offset is out of range"; assimp issue #4686).
-  else if (ext == "fbx") write = [&](const std::string& tmp) { write_with_assimp(mesh, tmp, "fbxa"); };
+  else if (ext == "glb" || ext == "gltf" || ext == "fbx") return save_scene({{"mesh", mesh}}, path);
   else throw OutputError(path + ": cannot save '." + ext + "' files (supported: obj, ply, off, stl, glb, gltf, fbx)");
   write_via_temporary(path, write);
+}
+
+void save_scene(const std::vector<NamedMesh>& meshes, const std::string& path) {
+  for (const NamedMesh& m : meshes)
+    if (!m.mesh.V.allFinite()) throw OutputError(path + ": refusing to write a non-finite coordinate (" + m.name + ")");
+  const std::string ext = detail::lower_extension(path);
+  // ASCII FBX: the binary FBX exporter of assimp 5.2 writes files that its own reader rejects
+  // ("FBX-Tokenize block offset is out of range"; assimp issue #4686).
+  const char* format = ext == "glb" ? "glb2" : ext == "gltf" ? "gltf2" : ext == "fbx" ? "fbxa" : nullptr;
+  if (!format) throw OutputError(path + ": cannot save a scene of meshes as '." + ext + "' (supported: glb, gltf, fbx)");
+  write_via_temporary(path, [&](const std::string& tmp) { write_with_assimp(meshes, tmp, format); });
 }
 
 void write_file_atomically(const std::string& path, const std::string& contents) {

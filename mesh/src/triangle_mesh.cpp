@@ -129,4 +129,29 @@ Eigen::Vector3i label_colour(int label) {
   return {c[0], c[1], c[2]};
 }
 
+TriangleMesh empty_mesh() {
+  TriangleMesh m;
+  m.V.resize(0, 3);
+  m.F.resize(0, 3);
+  return m;
+}
+
+void append_mesh(TriangleMesh& a, const TriangleMesh& b, const std::string& label_prefix) {
+  const Eigen::Index nv = a.V.rows(), nf = a.F.rows();
+  const int first_label = static_cast<int>(a.label_names.size());
+  if (a.labels.size() != nv) a.labels = Eigen::VectorXi::Constant(nv, -1);
+  a.V.conservativeResize(nv + b.V.rows(), 3);
+  a.V.bottomRows(b.V.rows()) = b.V;
+  a.F.conservativeResize(nf + b.F.rows(), 3);
+  a.F.bottomRows(b.F.rows()) = b.F.array() + static_cast<int>(nv);
+  a.labels.conservativeResize(nv + b.V.rows());
+  for (Eigen::Index i = 0; i < b.V.rows(); ++i)
+    a.labels(nv + i) = b.labels.size() == b.V.rows() && b.labels(i) >= 0 ? first_label + b.labels(i) : -1;
+  for (const std::string& name : b.label_names) a.label_names.push_back(label_prefix + name);
+  a.N.resize(0, 3);
+  a.UV.resize(0, 2);
+  a.quads.resize(0, 4);
+  a.source_vertex.resize(0);
+}
+
 }  // namespace dresskit

@@ -195,3 +195,19 @@ TEST(Thickness, WritesTheSurfaceAsCsvAndPng) {
 
 }  // namespace
 }  // namespace dresskit
+
+namespace dresskit {
+namespace {
+// A sheet of one fibre holding ρ × 0.25 × 1 mm of mass per area at solidity 0.25 is 1 mm thick; a
+// blend's fibre density is the mass-weighted harmonic mean (the volumes add up); bad densities are
+// refused.
+TEST(Thickness, SheetThicknessIsMassOverFibreVolume) {
+  const double rho_cotton = fibre_by_name("cotton").density, rho_poly = fibre_by_name("polyester").density;
+  EXPECT_NEAR(sheet_thickness({{"cotton", 1.0}}, 0.1 * rho_cotton * 0.25 / 100.0, 0.25), 0.001, 1e-12);
+  const double blend = 1.0 / (0.6 / rho_cotton + 0.4 / rho_poly);
+  EXPECT_NEAR(sheet_thickness({{"cotton", 0.6}, {"polyester", 0.4}}, 0.2, 0.25), 0.2 / (blend * 0.25), 1e-12);
+  EXPECT_THROW(sheet_thickness({{"cotton", 1.0}}, 0.0), InputError);
+  EXPECT_THROW(sheet_thickness({{"cotton", 1.0}}, 0.2, 0.0), InputError);
+}
+}  // namespace
+}  // namespace dresskit

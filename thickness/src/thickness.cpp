@@ -37,6 +37,13 @@ double fabric_depth(double diffusivity, const ThicknessOptions& o, double domain
 
 }  // namespace
 
+double sheet_thickness(const Composition& composition, double areal_density, double solidity) {
+  if (!(areal_density > 0.0) || !std::isfinite(areal_density))
+    throw InputError("areal density: must be a positive number of kg/m²");
+  const FabricThermal f = fabric_thermal(composition, solidity);
+  return areal_density / (f.fibre_density * solidity);
+}
+
 double penetration_depth(double diffusivity, double time, double t_skin, double t_env,
                          double threshold) {
   return 2.0 * std::sqrt(diffusivity * time) * inverse_erfc((threshold - t_env) / (t_skin - t_env));

@@ -99,9 +99,10 @@ struct SimulationOptions {
   bool projective_adaptive_weights = false;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
   /// Adaptive time step: a failed step, or one whose integrator raises the largest strain by more
-  /// than max_strain_change, is undone and retried at half the step (down to dt_min); after 10 calm
-  /// steps (change below a quarter of that) the step doubles back up to dt. A step is also never
-  /// longer than the contact and stability bound (contact_travel; symplectic Euler's limit from the
+  /// than max_strain_change, is undone and retried at half the step (down to dt_min; a rise that two
+  /// halvings did not shrink by a fifth is not the step's doing and is kept); after 10 calm steps
+  /// (change below a quarter of that) the step doubles back up to dt. A step is also never longer
+  /// than the contact and stability bound (contact_travel; symplectic Euler's limit from the
   /// stiffest spring and the lightest particle). Steps are dt / 2^k.
   bool adaptive = true;
   double dt_min = 1e-6;            ///< [s]

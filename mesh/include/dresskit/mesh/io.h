@@ -34,6 +34,13 @@ struct LoadOptions {
   UpAxis up = UpAxis::pos_y;    ///< source up axis; default +Y
 };
 
+/// The proper rotation that takes the source up axis to +Y (applied by load_mesh).
+Eigen::Matrix3d up_rotation(UpAxis up);
+
+/// Positions in the toolkit's frame (metres, +Y up) back in a file's frame (its units and up axis):
+/// the inverse of what load_mesh applied with these options.
+Eigen::MatrixX3d to_file_frame(const Eigen::MatrixX3d& V, const LoadOptions& options);
+
 /// The file extensions (lower case, without dot) that load_mesh reads.
 const std::vector<std::string>& loadable_extensions();
 
@@ -51,6 +58,16 @@ TriangleMesh load_mesh(const std::string& path, const LoadOptions& options = {})
 /// place, so a failure leaves nothing.
 /// Throws OutputError naming the path.
 void save_mesh(const TriangleMesh& mesh, const std::string& path);
+
+/// A mesh with a name: one node of a scene file.
+struct NamedMesh {
+  std::string name;
+  TriangleMesh mesh;
+};
+
+/// Saves several meshes as one scene, each a named node (.glb, .gltf or .fbx, through assimp), with
+/// save_mesh's temporary-folder-and-move. Throws OutputError naming the path.
+void save_scene(const std::vector<NamedMesh>& meshes, const std::string& path);
 
 /// The file extensions (lower case, without dot) that save_mesh writes.
 const std::vector<std::string>& saveable_extensions();

@@ -46,6 +46,14 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& what);
 TriangleMesh select_vertices(const TriangleMesh& mesh, const std::vector<bool>& keep,
                              std::vector<int>* old_to_new = nullptr);
 
+/// A mesh without vertices or faces (0×3 arrays), to append to.
+TriangleMesh empty_mesh();
+
+/// Appends b to a: vertices, faces, and labels with b's part names prefixed by label_prefix (a
+/// vertex of b without a label, or of a b without labels, gets −1). Other attributes of a are
+/// dropped.
+void append_mesh(TriangleMesh& a, const TriangleMesh& b, const std::string& label_prefix);
+
 /// Per-vertex RGB colour (0–255) for a label: a fixed palette, grey for -1.
 Eigen::Vector3i label_colour(int label);
 

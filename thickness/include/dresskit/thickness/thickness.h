@@ -49,6 +49,12 @@ ThicknessResult compute_thickness(const Composition& composition, const Thicknes
 /// The erfc solution's crossing depth: 2 √(α t) erfc⁻¹((θ − T_env) / (T_skin − T_env)) [m].
 double penetration_depth(double diffusivity, double time, double t_skin, double t_env, double threshold);
 
+/// The cloth's own thickness: its mass per area held by fibre at the given solidity,
+/// areal_density / (ρ_fibre × solidity) [m] (camel ponte roma, 0.284 kg/m² of polyester and rayon:
+/// 0.8 mm). What separates one garment from the next when they are worn in layers. Throws
+/// InputError for a bad composition, a non-positive density or solidity.
+double sheet_thickness(const Composition& composition, double areal_density, double solidity = 0.25);
+
 /// Down fill of a quilted garment: each panel holds fibre filling its area × thickness at the
 /// fabric's solidity, mass = area × thickness × solidity × fibre density. So the fill of a panel is
 /// a multiple of its thickness and the total a multiple of the (area-weighted) total thickness.

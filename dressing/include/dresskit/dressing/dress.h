@@ -1,0 +1,109 @@
+#pragma once
+// The dressing pipeline, the product's main job: a body and garments from files to the garments
+// settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
+// how long: load → clean → units → segmentation → placement → layers → thickness → settle.
+//
+//   dresskit::MeshFile body{"body.obj"};
+//   dresskit::GarmentFile shirt{{"shirt.obj"}, "gray-interlock"};
+//   const dresskit::DressResult r = dresskit::dress(body, {shirt});
+//   // r.garments[0].dressed: the settled shirt [m], in r.garments[0].mesh's vertex order
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dresskit/alignment/placement.h"
+#include "dresskit/cloth/run.h"
+#include "dresskit/mesh/io.h"
+#include "dresskit/segmentation/segment.h"
+
+namespace dresskit {
+
+/// How long and how finely to settle: `fast` (steps up to 1/60 s, 4 iterations, at most 0.5 s
+/// simulated), `balanced` (the simulator's defaults, at most 1 s) or `accurate` (steps up to
+/// 1/240 s, 20 iterations, at most 2 s); every one stops early once the garments are at rest.
+enum class DressQuality { fast, balanced, accurate };
+/// "fast", "balanced", "accurate"; throws InputError naming the value otherwise.
+DressQuality parse_quality(const std::string& text);
+std::string to_string(DressQuality quality);
+
+/// A mesh file and what is known about it.
+struct MeshFile {
+  std::string path;
+  LoadOptions load;        ///< the file's units and up axis
+  std::string labels;      ///< part labels (JSON, the layouts of ../shared/data/labels); "" = segment
+  std::string labels_key;  ///< the entry in the labels file; "" = the file's stem
+};
+
+struct GarmentFile {
+  MeshFile file;
+  std::string fabric;  ///< a built-in fabric (docs/cloth.md); "" = gray-interlock
+};
+
+struct DressOptions {
+  DressQuality quality = DressQuality::balanced;
+  bool settle = true;  ///< false: stop after placement (dressed = placed)
+  PlacementOptions placement;
+  SegmentationOptions segmentation;
+  /// A garment counts as already on the body, and is not placed, when at most this fraction of its
+  /// vertices lies deeper than 2 mm inside the body and its vertices lie within on average
+  /// `fit_distance` × the body's height of the body's surface [unitless].
+  double fit_inside = 0.01, fit_distance = 0.03;
+  /// Called when a stage ends, and while settling with the simulated seconds done of at most total.
+  std::function<void(const struct DressStage&)> on_stage;
+  std::function<void(double done, double total)> on_settle;
+};
+
+struct DressStage {
+  std::string name;      ///< load, clean, units, segmentation, placement, layers, thickness, settle
+  bool ran = false;
+  double seconds = 0.0;  ///< wall-clock
+  std::string reason;    ///< what it did, or why it was left out
+};
+
+/// One named part of a mesh and how sure its name is (1 for parts read from a label file).
+struct DressPart {
+  std::string name;
+  double confidence = 1.0;
+  int vertices = 0;
+};
+
+struct DressedGarment {
+  std::string name;    ///< the file's stem
+  std::string fabric;
+  MeshFile file;
+  TriangleMesh mesh;   ///< as loaded (and cleaned) [m]: its rest shape; labels = its parts
+  std::vector<DressPart> parts;
+  bool labels_from_file = false;
+  bool placed_by_placement = false;   ///< false: it already sat on the body
+  PlacementResult placement;          ///< when placed_by_placement
+  Eigen::MatrixX3d placed, dressed;   ///< [m], in mesh's vertex order
+  int layer = 0;                      ///< 0 = worn next to the body
+  double thickness = 0.0;             ///< the cloth's own thickness from its fabric [m]
+  int crossings_authored = 0, crossings_placed = 0, crossings_dressed = 0;  ///< edge–triangle, own
+  int inside_placed = 0, inside_dressed = 0;  ///< vertices deeper than 2 mm inside the body
+  double max_strain_dressed = 0.0;    ///< largest structural strain against the rest shape
+};
+
+struct DressResult {
+  TriangleMesh body;  ///< as loaded (and cleaned) [m]; labels = its parts
+  std::vector<DressPart> body_parts;
+  bool body_labels_from_file = false;
+  std::vector<DressedGarment> garments;  ///< inside to outside
+  std::vector<DressStage> stages;
+  bool settled = false;   ///< the settle stage ran
+  RunResult settle;       ///< when it ran
+  /// Edge–triangle crossings between different garments at the end (0 = the layers kept apart),
+  /// and the gap between consecutive layers: the nearest distance from each vertex of the outer
+  /// garment to the inner one, 5th percentile and median, against the thickness asked for [m].
+  int layer_crossings = 0;
+  std::vector<double> layer_gap_p5, layer_gap_median, layer_gap_asked;
+  double seconds = 0.0;  ///< the whole run, wall-clock
+};
+
+/// Dresses the body in the garments, given inside to outside. Throws InputError naming the file
+/// and the problem: an unreadable file, a body of implausible height for its units (with the units
+/// that would fit), a mesh with no arms or legs given as the body, a garment that matches no body
+/// part or that the placement could not fit, an unknown fabric.
+DressResult dress(const MeshFile& body, const std::vector<GarmentFile>& garments, const DressOptions& options = {});
+
+}  // namespace dresskit

@@ -1,0 +1,409 @@
+#include "dresskit/dressing/dress.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "dresskit/alignment/part_labels.h"
+#include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/mesh_distance.h"
+#include "dresskit/cloth/self_collision.h"
+#include "dresskit/cloth/triangle_bvh.h"
+#include "dresskit/mesh/cleanup.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/inside.h"
+#include "dresskit/mesh/topology.h"
+#include "dresskit/thickness/thickness.h"
+
+namespace dresskit {
+
+DressQuality parse_quality(const std::string& text) {
+  if (text == "fast") return DressQuality::fast;
+  if (text == "balanced") return DressQuality::balanced;
+  if (text == "accurate") return DressQuality::accurate;
+  throw InputError("quality: '" + text + "' is not fast, balanced or accurate");
+}
+
+std::string to_string(DressQuality quality) {
+  switch (quality) {
+    case DressQuality::fast: return "fast";
+    case DressQuality::balanced: return "balanced";
+    case DressQuality::accurate: return "accurate";
+  }
+  return "?";
+}
+
+namespace {
+using Clock = std::chrono::steady_clock;
+
+std::string number(double value, int digits = 3) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*g", digits, value);
+  return buf;
+}
+
+std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+double height(const TriangleMesh& m) { return m.V.col(1).maxCoeff() - m.V.col(1).minCoeff(); }
+
+/// Times a stage and records it (and tells the caller) when it ends.
+class Stage {
+ public:
+  Stage(DressResult& result, const DressOptions& options, std::string name)
+      : result_(result), options_(options), start_(Clock::now()) {
+    stage_.name = std::move(name);
+  }
+  void done(bool ran, std::string reason) {
+    stage_.ran = ran;
+    stage_.reason = std::move(reason);
+    stage_.seconds = std::chrono::duration<double>(Clock::now() - start_).count();
+    result_.stages.push_back(stage_);
+    if (options_.on_stage) options_.on_stage(stage_);
+  }
+
+ private:
+  DressResult& result_;
+  const DressOptions& options_;
+  DressStage stage_;
+  Clock::time_point start_;
+};
+
+/// What makes a mesh unfit for the later stages, or "" when nothing does: degenerate faces, edges
+/// with more than two faces, faces turned against their neighbours. (A pinched vertex or a vertex
+/// used by no face is harmless.)
+std::string defects(const TriangleMesh& m) {
+  const TopologyReport t = analyse_topology(m);
+  std::string why;
+  auto add = [&](int count, const char* what) {
+    if (count > 0) why += (why.empty() ? "" : ", ") + std::to_string(count) + " " + what;
+  };
+  add(t.num_degenerate_faces, "degenerate faces");
+  add(t.num_non_manifold_edges, "edges with more than two faces");
+  add(t.num_inconsistent_edges, "edges between faces turned against each other");
+  return why;
+}
+
+/// Parts from a label file, or by spectral segmentation.
+std::vector<DressPart> label(TriangleMesh& m, const MeshFile& f, const SegmentationOptions& options,
+                             bool& from_file) {
+  std::vector<DressPart> parts;
+  from_file = !f.labels.empty();
+  if (from_file) {
+    apply_part_labels(m, f.labels, f.labels_key, f.path);
+    parts.resize(m.label_names.size());
+    for (std::size_t k = 0; k < parts.size(); ++k) parts[k].name = m.label_names[k];
+    for (Eigen::Index i = 0; i < m.labels.size(); ++i)
+      if (m.labels(i) >= 0) ++parts[static_cast<std::size_t>(m.labels(i))].vertices;
+    return parts;
+  }
+  const SegmentationResult r = segment_mesh(m, options);
+  m.labels = r.vertex_labels;
+  m.label_names = r.part_names();
+  for (const NamedPart& p : r.parts) parts.push_back({p.name, p.confidence, p.vertices});
+  return parts;
+}
+
+std::string part_list(const std::vector<DressPart>& parts) {
+  std::string s;
+  for (const DressPart& p : parts) s += (s.empty() ? "" : ", ") + p.name;
+  return s;
+}
+
+/// How a garment's vertices lie against the body: mean distance to its surface [m] and the
+/// vertices deeper than 2 mm inside.
+struct SurfaceFit {
+  double mean_distance = 0.0;
+  int inside = 0;
+};
+SurfaceFit surface_fit(const Eigen::MatrixX3d& V, const InsideTest& body) {
+  SurfaceFit fit;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    const double d = body.signed_distance(V.row(i).transpose());
+    fit.mean_distance += std::abs(d);
+    if (d < -0.002) ++fit.inside;
+  }
+  if (V.rows() > 0) fit.mean_distance /= static_cast<double>(V.rows());
+  return fit;
+}
+
+/// The simulator's options for a quality; the run's duration.
+SimulationOptions simulation_options(DressQuality q, double& duration) {
+  SimulationOptions o;
+  o.self_collision = true;
+  switch (q) {
+    case DressQuality::fast:
+      o.dt = 1.0 / 60.0;
+      o.projective_iterations = 4;
+      duration = 0.5;
+      break;
+    case DressQuality::balanced: duration = 1.0; break;
+    case DressQuality::accurate:
+      o.dt = 1.0 / 240.0;
+      o.projective_iterations = 20;
+      duration = 2.0;
+      break;
+  }
+  return o;
+}
+
+/// Largest structural strain of a cloth model at positions x (quad diagonals are shear springs).
+double max_structural_strain(const ClothModel& m, const Eigen::MatrixX3d& x) {
+  const SpringSet& s = m.springs;
+  double worst = 0.0;
+  for (int k = 0; k < s.size(); ++k)
+    if (s.type[k] == SpringType::structural)
+      worst = std::max(worst, (x.row(s.i[k]) - x.row(s.j[k])).norm() / s.rest_length[k] - 1.0);
+  return worst;
+}
+
+/// The garment's rest shape for settling: as made, graded by the placement's size change.
+TriangleMesh rest_shape(const DressedGarment& g) {
+  TriangleMesh rest = g.mesh;
+  if (g.placed_by_placement) rest.V *= g.placement.global_scale;
+  return rest;
+}
+
+/// Percentiles (5th, 50th) of the distance from each of `outer`'s points to the triangles of
+/// `inner` [m].
+std::pair<double, double> gap_percentiles(const Eigen::MatrixX3d& outer, const Eigen::MatrixX3d& inner,
+                                          const Eigen::MatrixX3i& inner_faces) {
+  const TriangleBvh tree(inner, inner_faces);
+  std::vector<double> d(static_cast<std::size_t>(outer.rows()));
+  for (Eigen::Index i = 0; i < outer.rows(); ++i) {
+    Eigen::Vector3d q;
+    double d2 = 0.0;
+    tree.closest(outer.row(i).transpose(), &q, &d2);
+    d[static_cast<std::size_t>(i)] = std::sqrt(d2);
+  }
+  if (d.empty()) return {0.0, 0.0};
+  std::sort(d.begin(), d.end());
+  return {d[d.size() / 20], d[d.size() / 2]};
+}
+
+}  // namespace
+
+DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& garment_files,
+                  const DressOptions& options) {
+  const auto start = Clock::now();
+  DressResult result;
+  if (garment_files.empty()) throw InputError("dress: no garment given");
+  std::vector<Fabric> fabrics;
+  for (const GarmentFile& g : garment_files) fabrics.push_back(fabric_by_name(g.fabric.empty() ? "gray-interlock" : g.fabric));
+
+  // Load.
+  {
+    Stage stage(result, options, "load");
+    result.body = load_mesh(body_file.path, body_file.load);
+    for (const GarmentFile& g : garment_files) {
+      DressedGarment d;
+      d.name = stem(g.file.path);
+      d.file = g.file;
+      d.fabric = g.fabric.empty() ? "gray-interlock" : g.fabric;
+      d.mesh = load_mesh(g.file.path, g.file.load);
+      result.garments.push_back(std::move(d));
+    }
+    stage.done(true, std::to_string(1 + garment_files.size()) + " meshes");
+  }
+
+  // Clean: only the meshes with defects the later stages cannot take.
+  {
+    Stage stage(result, options, "clean");
+    std::string done;
+    auto clean = [&](TriangleMesh& m, const std::string& name) {
+      const std::string why = defects(m);
+      if (why.empty()) return;
+      CleanupOptions o;
+      o.stitch_borders = false;  // a garment's openings stay open
+      m = cleanup_mesh(m, o).mesh;
+      done += (done.empty() ? "" : "; ") + name + ": " + why;
+    };
+    clean(result.body, stem(body_file.path));
+    for (DressedGarment& g : result.garments) clean(g.mesh, g.name);
+    stage.done(!done.empty(), done.empty() ? "no mesh has degenerate faces, non-manifold or inconsistent edges" : done);
+  }
+
+  // Units: a person is 0.5–2.5 m tall; a garment is between a tenth and one and a half of its body.
+  const double body_height = height(result.body);
+  {
+    Stage stage(result, options, "units");
+    if (!(body_height >= 0.5 && body_height <= 2.5)) {
+      const double in_file = body_height / body_file.load.units.metres_per_unit;
+      const std::string fits = units_for_body(in_file);
+      throw InputError(body_file.path + ": the body is " + number(body_height) + " m tall in units " +
+                       body_file.load.units.name +
+                       (fits.empty() ? ": give its units (--body-units)"
+                                     : "; with --body-units " + fits + " it would be " +
+                                           number(in_file * Units::parse(fits).metres_per_unit) + " m"));
+    }
+    for (DressedGarment& g : result.garments) {
+      const double size = bounding_box(g.mesh).sizes().maxCoeff();
+      if (size >= 0.1 * body_height && size <= 1.5 * body_height) continue;
+      const double in_file = size / g.file.load.units.metres_per_unit;
+      std::string fits;
+      for (const char* name : {"m", "dm", "cm", "mm"}) {
+        const double s = in_file * Units::parse(name).metres_per_unit;
+        if (s >= 0.1 * body_height && s <= 1.5 * body_height) {
+          fits = name;
+          break;
+        }
+      }
+      throw InputError(g.file.path + ": the garment is " + number(size) + " m across in units " +
+                       g.file.load.units.name + " on a body " + number(body_height) + " m tall" +
+                       (fits.empty() ? ": give its units (--garment-units)" : "; with --garment-units " + fits + " it fits"));
+    }
+    stage.done(true, "body " + number(body_height) + " m tall; garments " + std::to_string(result.garments.size()) +
+                         " within its size");
+  }
+
+  // Segmentation: label files where given, spectral segmentation otherwise.
+  {
+    Stage stage(result, options, "segmentation");
+    int segmented = 0;
+    result.body_parts = label(result.body, body_file, options.segmentation, result.body_labels_from_file);
+    segmented += !result.body_labels_from_file;
+    bool limbs = false;
+    for (const DressPart& p : result.body_parts) {
+      const std::string& n = p.name;
+      limbs = limbs || n.find("arm") != std::string::npos || n.find("leg") != std::string::npos;
+    }
+    if (!limbs) {
+      throw InputError(body_file.path + ": does not look like a body: no arms or legs among its parts (" +
+                       part_list(result.body_parts) + ")");
+    }
+    for (DressedGarment& g : result.garments) {
+      g.parts = label(g.mesh, g.file, options.segmentation, g.labels_from_file);
+      segmented += !g.labels_from_file;
+    }
+    const int meshes = 1 + static_cast<int>(result.garments.size());
+    stage.done(segmented > 0, segmented == 0        ? "every mesh has a label file"
+                              : segmented == meshes ? "every mesh cut into parts"
+                                                    : std::to_string(segmented) + " of " + std::to_string(meshes) +
+                                                          " meshes cut into parts (the others have label files)");
+  }
+
+  // Placement, unless the garment already sits on this body.
+  const InsideTest inside(result.body);
+  {
+    Stage stage(result, options, "placement");
+    std::string report;
+    int placed = 0;
+    for (DressedGarment& g : result.garments) {
+      g.crossings_authored = count_intersections(g.mesh.V, g.mesh.F);
+      const SurfaceFit before = surface_fit(g.mesh.V, inside);
+      const bool fits = before.inside <= options.fit_inside * g.mesh.num_vertices() &&
+                        before.mean_distance <= options.fit_distance * body_height;
+      if (fits) {
+        g.placed = g.mesh.V;
+        report += (report.empty() ? "" : "; ") + g.name + " already on the body (mean distance " +
+                  number(100.0 * before.mean_distance / body_height, 2) + " % of its height, " +
+                  std::to_string(before.inside) + " vertices inside)";
+      } else {
+        g.placement = place_garment(g.mesh, result.body, options.placement);
+        g.placed_by_placement = true;
+        g.placed = g.placement.V;
+        ++placed;
+        // The quality gate: a placement that shrank or blew the garment up, or left it off the body,
+        // is refused rather than passed on.
+        const double scale = g.placement.global_scale;
+        const SurfaceFit after = surface_fit(g.placed, inside);
+        if (!(scale >= 0.4 && scale <= 2.5) || after.mean_distance > 0.1 * body_height) {
+          throw InputError(g.file.path + ": the placement does not fit the garment on the body (scale " +
+                           number(scale) + ", mean distance to the body " + number(after.mean_distance) +
+                           " m): check its units and that it is a garment for a person");
+        }
+        report += (report.empty() ? "" : "; ") + g.name + " placed (scale " + number(scale) + ", " +
+                  std::to_string(g.placement.matching.matches.size()) + " parts matched)";
+      }
+      g.crossings_placed = count_intersections(g.placed, g.mesh.F);
+      g.inside_placed = surface_fit(g.placed, inside).inside;
+    }
+    stage.done(placed > 0, report);
+  }
+
+  // Layers: inside to outside as given.
+  {
+    Stage stage(result, options, "layers");
+    for (std::size_t k = 0; k < result.garments.size(); ++k) result.garments[k].layer = static_cast<int>(k);
+    std::string order;
+    for (const DressedGarment& g : result.garments) order += (order.empty() ? "" : " < ") + g.name;
+    stage.done(result.garments.size() > 1,
+               result.garments.size() > 1 ? "inside to outside as given: " + order
+                                          : "one garment: no layers to order");
+  }
+
+  // Thickness: each cloth's own thickness from its fabric keeps the layers apart.
+  double separation = 0.0;
+  {
+    Stage stage(result, options, "thickness");
+    std::string report;
+    for (std::size_t k = 0; k < result.garments.size(); ++k) {
+      DressedGarment& g = result.garments[k];
+      const Fabric& f = fabrics[k];
+      g.thickness = sheet_thickness(f.composition, f.areal_density);
+      separation = std::max(separation, g.thickness);
+      report += (report.empty() ? "" : ", ") + g.name + " " + number(1e3 * g.thickness, 2) + " mm";
+    }
+    stage.done(true, report + " (mass per area over fibre density × solidity 0.25); no fabric is a fill "
+                              "that needs a double layer");
+  }
+
+  // Settle.
+  for (DressedGarment& g : result.garments) g.dressed = g.placed;
+  {
+    Stage stage(result, options, "settle");
+    if (!options.settle) {
+      stage.done(false, "not asked for (--no-settle)");
+    } else {
+      double duration = 1.0;
+      SimulationOptions o = simulation_options(options.quality, duration);
+      o.colliders.push_back(Collider::mesh(std::make_shared<const MeshDistance>(result.body)));
+      std::vector<ClothModel> models;
+      for (std::size_t k = 0; k < result.garments.size(); ++k) {
+        const DressedGarment& g = result.garments[k];
+        models.push_back(build_cloth(rest_shape(g), fabrics[k]));
+      }
+      const std::vector<int> first = garment_offsets(models);
+      const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
+      ClothSimulator sim(model, o);
+      Eigen::MatrixX3d x(model.rest_positions.rows(), 3);
+      for (std::size_t k = 0; k < result.garments.size(); ++k)
+        x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
+      sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
+      RunOptions run_options;
+      run_options.duration = duration;
+      result.settle = run(sim, run_options, {}, [&](const StepResult&) {
+        if (options.on_settle) options.on_settle(sim.time(), duration);
+      });
+      result.settled = true;
+      for (std::size_t k = 0; k < result.garments.size(); ++k)
+        result.garments[k].dressed = sim.positions().middleRows(first[k], first[k + 1] - first[k]);
+      const int all = count_intersections(sim.positions(), model.faces);
+      int own = 0;
+      for (const DressedGarment& g : result.garments) own += count_intersections(g.dressed, g.mesh.F);
+      result.layer_crossings = std::max(0, all - own);
+      stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim.time()) +
+                           " s simulated, " + result.settle.stopped_reason);
+    }
+  }
+
+  for (std::size_t k = 0; k < result.garments.size(); ++k) {
+    DressedGarment& g = result.garments[k];
+    g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);
+    g.inside_dressed = surface_fit(g.dressed, inside).inside;
+    g.max_strain_dressed = max_structural_strain(build_cloth(rest_shape(g), fabrics[k]), g.dressed);
+    if (k == 0) continue;
+    const DressedGarment& inner = result.garments[k - 1];
+    const auto [p5, median] = gap_percentiles(g.dressed, inner.dressed, inner.mesh.F);
+    result.layer_gap_p5.push_back(p5);
+    result.layer_gap_median.push_back(median);
+    result.layer_gap_asked.push_back(separation);
+  }
+  result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  return result;
+}
+
+}  // namespace dresskit

@@ -1,0 +1,15 @@
+#pragma once
+// Writing a command's outputs so that they appear together or not at all: everything is written
+// into a fresh temporary folder beside DIR, then moved into DIR (created when missing); on any
+// failure the temporary folder is removed and DIR is left as it was.
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace dresskit::cli {
+
+/// Calls write(folder) with the temporary folder, then moves what it wrote into dir. Throws
+/// OutputError naming dir when a folder cannot be made or a file moved; rethrows write's errors.
+void write_folder(const std::string& dir, const std::function<void(const std::filesystem::path&)>& write);
+
+}  // namespace dresskit::cli
