@@ -40,9 +40,12 @@ void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const
       }
       for (const auto& k : keys)
         if (!list && j["labels"].contains(k)) list = &j["labels"][k];
-      if (!list)
-        throw InputError(labels_path + ": no labels for '" +
-                         (keys.empty() ? std::string("?") : keys.front()) + "' (give the key)");
+      if (!list) {
+        std::string known;
+        for (const auto& [k, v] : j["labels"].items()) known += (known.empty() ? "" : ", ") + k;
+        throw InputError(labels_path + ": no labels for '" + (keys.empty() ? std::string("?") : keys.front()) +
+                         "' (the file has: " + known + ")");
+      }
     }
     if (list) {
       if (static_cast<int>(list->size()) != source_count)

@@ -89,6 +89,7 @@ TopologyReport analyse_topology(const TriangleMesh& mesh) {
       const int a = static_cast<int>(key >> 32), b = static_cast<int>(key & 0xffffffffu);
       boundary.unite(a, b);
       on_boundary[a] = on_boundary[b] = true;
+      r.boundary_length += (mesh.V.row(a) - mesh.V.row(b)).norm();
     } else if (use.faces == 2) {
       if (use.forward != 1) ++r.num_inconsistent_edges;
     } else {

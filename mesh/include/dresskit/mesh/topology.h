@@ -15,6 +15,7 @@ struct TopologyReport {
   int num_components = 0;            ///< face sets connected through shared vertices
   int num_boundary_edges = 0;        ///< edges used by exactly one face
   int num_boundary_loops = 0;        ///< connected sets of boundary edges
+  double boundary_length = 0.0;      ///< summed length of the boundary edges [m]
   int num_non_manifold_edges = 0;    ///< edges used by three or more faces
   int num_non_manifold_vertices = 0; ///< vertices whose faces form more than one fan
   int num_isolated_vertices = 0;     ///< vertices used by no face
