@@ -2,6 +2,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <limits>
 #include <set>
@@ -54,12 +55,19 @@ std::vector<PartDescriptor> describe_parts(const TriangleMesh& mesh) {
 }
 
 namespace {
-// The body part a garment part of another name follows: a skirt's halves (segmentation's
-// skirt_left / skirt_right) follow the legs, as trouser legs do.
-std::string body_name_for(const std::string& garment_part) {
-  if (garment_part == "skirt_left") return "leg_left";
-  if (garment_part == "skirt_right") return "leg_right";
-  return garment_part;
+// The body part a garment part of another name follows: segmentation's garment parts (a garment's
+// body, sleeves, a skirt and its halves, and further pieces of them named with a suffix, "body_2")
+// follow the torso, the arms and the legs.
+std::string body_name_for(std::string garment_part) {
+  const std::size_t cut = garment_part.find_last_not_of("0123456789");
+  if (cut != std::string::npos && cut + 1 < garment_part.size() && garment_part[cut] == '_')
+    garment_part.resize(cut);
+  static const std::map<std::string, std::string> follows = {
+      {"body", "torso"},          {"sleeve_left", "arm_left"}, {"sleeve_right", "arm_right"},
+      {"skirt", "torso"},         {"skirt_waist", "torso"},    {"skirt_left", "leg_left"},
+      {"skirt_right", "leg_right"}};
+  const auto it = follows.find(garment_part);
+  return it == follows.end() ? garment_part : it->second;
 }
 
 double descriptor_cost(const PartDescriptor& g, const PartDescriptor& b) {
@@ -79,9 +87,12 @@ MatchingResult match_parts(const std::vector<PartDescriptor>& garment,
   std::vector<bool> body_used(body.size(), false);
   std::vector<int> left;  // garment parts without a namesake on the body
   for (std::size_t g = 0; g < garment.size(); ++g) {
-    const auto it = std::find_if(body.begin(), body.end(), [&](const PartDescriptor& b) {
-      return b.name == body_name_for(garment[g].name);
-    });
+    auto named = [&](const std::string& name) {
+      return std::find_if(body.begin(), body.end(), [&](const PartDescriptor& b) { return b.name == name; });
+    };
+    // The same name first, then the part it follows (several garment parts may follow one).
+    auto it = named(garment[g].name);
+    if (it == body.end()) it = named(body_name_for(garment[g].name));
     if (it == body.end()) {
       left.push_back(static_cast<int>(g));
       continue;

@@ -117,22 +117,77 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
     spread = svd.singularValues()(1) > 1e-3 * svd.singularValues()(0);  // not all on one line
   }
   const Eigen::MatrixX3d body_normals = vertex_normals(body.V, body.F);
+  // Candidates: the similarity of the junctions (three or more spread landmarks; or two, both
+  // meshes upright: a t-shirt's shoulders, trousers' hips) and the multi-start ICP of the whole
+  // garment onto the whole body. Junction centroids of a garment's openings and of a body's cuts are
+  // not the same points, and ICP alone may shrink a garment onto the wrong limb; the candidate whose
+  // parts lie nearest their matched body parts (mean distance) is kept.
+  std::vector<std::pair<Eigen::Matrix4d, std::string>> candidates;
   if (spread) {
     Eigen::Matrix3Xd X(3, from.size()), Y(3, to.size());
     for (std::size_t k = 0; k < from.size(); ++k) {
       X.col(k) = from[k];
       Y.col(k) = to[k];
     }
-    out.global = umeyama_similarity(X, Y);
-    out.global_method = "junctions (" + std::to_string(from.size()) + " landmarks)";
-  } else {
+    candidates.emplace_back(umeyama_similarity(X, Y), "junctions (" + std::to_string(from.size()) + " landmarks)");
+  } else if (from.size() == 2 && (from[1] - from[0]).norm() > 0.0 && (to[1] - to[0]).norm() > 0.0) {
+    const Eigen::Vector3d a = from[1] - from[0], b = to[1] - to[0];
+    const double yaw = std::atan2(b.x(), b.z()) - std::atan2(a.x(), a.z());
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitY()).toRotationMatrix();
+    const double s = b.norm() / a.norm();
+    Eigen::Matrix4d T = Eigen::Matrix4d::Identity();
+    T.block<3, 3>(0, 0) = s * R;
+    T.block<3, 1>(0, 3) = 0.5 * (to[0] + to[1]) - s * R * 0.5 * (from[0] + from[1]);
+    candidates.emplace_back(T, "junctions (2 landmarks, upright)");
+  }
+  if (!candidates.empty()) {
+    // The junctions' fit refined by ICP (with scale) of the matched garment parts onto their body parts.
+    std::vector<int> grows, brows;
+    for (const auto& m : out.matching.matches) {
+      for (int v : rows_with_label(garment, label_of(garment, m.garment_part))) grows.push_back(v);
+      for (int v : rows_with_label(body, label_of(body, m.body_part))) brows.push_back(v);
+    }
+    std::sort(brows.begin(), brows.end());
+    brows.erase(std::unique(brows.begin(), brows.end()), brows.end());
+    if (grows.size() >= 3 && brows.size() >= 3) {
+      IcpOptions o;
+      o.with_scale = true;
+      const IcpResult r = icp_align(gather(garment.V, {}, grows), gather(body.V, body_normals, brows), o,
+                                    candidates.front().first);
+      candidates.emplace_back(r.transform, candidates.front().second + " refined by ICP");
+    }
+  }
+  {
     GlobalOptions g;
     g.with_scale = true;
-    out.global =
-        global_align(PointSet{garment.V, {}}, PointSet{body.V, body_normals}, g).result.transform;
-    out.global_method = "multi-start ICP (fewer than 3 junctions in common)";
-    out.junctions.clear();
+    candidates.emplace_back(global_align(PointSet{garment.V, {}}, PointSet{body.V, body_normals}, g).result.transform,
+                            "multi-start ICP");
   }
+  double best = HUGE_VAL;
+  for (const auto& [T, method] : candidates) {
+    double sum = 0.0;
+    int count = 0;
+    for (const auto& m : out.matching.matches) {
+      const std::vector<int> grows = rows_with_label(garment, label_of(garment, m.garment_part));
+      const std::vector<int> brows = rows_with_label(body, label_of(body, m.body_part));
+      if (grows.empty() || brows.empty()) continue;
+      const PointLocator near(gather(body.V, {}, brows).V);
+      const Eigen::MatrixX3d moved = transform_points(T, gather(garment.V, {}, grows).V);
+      for (Eigen::Index i = 0; i < moved.rows(); ++i) {
+        double d2 = 0.0;
+        near.nearest(moved.row(i).transpose(), &d2);
+        sum += std::sqrt(d2);
+        ++count;
+      }
+    }
+    const double score = count ? sum / count : HUGE_VAL;
+    if (score < best) {
+      best = score;
+      out.global = T;
+      out.global_method = method;
+    }
+  }
+  if (out.global_method == "multi-start ICP") out.junctions.clear();
   out.global_scale = std::cbrt(out.global.block<3, 3>(0, 0).determinant());
 
   // Per-part refinement.
@@ -262,7 +317,11 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
   for (int c = 0; c < pieces; ++c) reach[c] = 2.0 * edge_sum[c] / std::max(1, edge_count[c]);
   std::vector<int> order(pieces);
   std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](int a, int b) { return top[a] < top[b]; });
+  const bool given = options.vertex_layers.size() == garment.num_vertices();
+  auto layer = [&](int c) { return given ? options.vertex_layers(first_vertex[c]) : 0; };
+  std::sort(order.begin(), order.end(), [&](int a, int b) {
+    return layer(a) != layer(b) ? layer(a) < layer(b) : top[a] < top[b];
+  });
   for (int c : order) out.layer_pieces.push_back(first_vertex[c]);
   const bool layered = options.layer_gap >= 0.0 && pieces > 1;
   std::vector<bool> layer_moved(garment.num_vertices(), false);

@@ -51,6 +51,10 @@ struct PlacementOptions {
   /// of an outer piece ends at least this far outside the nearest vertex of an inner piece, along
   /// the body's normal there, so that the pieces start the simulation apart [m]; < 0 = off.
   double layer_gap = 0.003;
+  /// Per garment vertex, its layer (0 = innermost) when an outfit's pieces are worn in a given
+  /// order (several garment files placed together); empty = pieces ordered by the height of their
+  /// tops. Pieces of one layer are ordered by their tops too.
+  Eigen::VectorXi vertex_layers;
 };
 
 struct PartPlacement {
@@ -66,7 +70,9 @@ struct PlacementResult {
   MatchingResult matching;
   Eigen::Matrix4d global = Eigen::Matrix4d::Identity();  ///< garment → body similarity
   double global_scale = 1.0;
-  std::string global_method;           ///< "junctions (N landmarks)" or "multi-start ICP"
+  /// The global fit kept, of "junctions (N landmarks)", "junctions (2 landmarks, upright)" and
+  /// "multi-start ICP": the one whose parts lie nearest their matched body parts.
+  std::string global_method;
   std::vector<std::string> junctions;  ///< the part pairs used as landmarks
   std::vector<PartPlacement> parts;
   int pushed_out = 0;             ///< garment vertices moved out of the body
