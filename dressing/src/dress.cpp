@@ -135,11 +135,10 @@ SimulationOptions simulation_options(DressQuality q, double& duration) {
   SimulationOptions o;
   o.self_collision = true;
   switch (q) {
-    case DressQuality::fast:
-      o.dt = 1.0 / 60.0;
-      o.projective_iterations = 4;
-      duration = 0.5;
-      break;
+    // Fast keeps the simulator's steps and iterations and settles for less time: a stiff fabric
+    // held against the body (denim on a larger body) needs the default projective iterations, or
+    // its adaptive step falls to the minimum.
+    case DressQuality::fast: duration = 0.5; break;
     case DressQuality::balanced: duration = 1.0; break;
     case DressQuality::accurate:
       o.dt = 1.0 / 240.0;
@@ -182,6 +181,16 @@ std::pair<double, double> gap_percentiles(const Eigen::MatrixX3d& outer, const E
   if (d.empty()) return {0.0, 0.0};
   std::sort(d.begin(), d.end());
   return {d[d.size() / 20], d[d.size() / 2]};
+}
+
+/// Parts of the same name from several garments keep apart as name_2, name_3, ... (each garment's
+/// body is placed on its own), as segmentation names the pieces of one garment.
+void distinct_label_names(TriangleMesh& m) {
+  for (std::size_t l = 1; l < m.label_names.size(); ++l) {
+    const std::string name = m.label_names[l];
+    for (int n = 2; std::count(m.label_names.begin(), m.label_names.begin() + static_cast<long>(l), m.label_names[l]); ++n)
+      m.label_names[l] = name + "_" + std::to_string(n);
+  }
 }
 
 }  // namespace
@@ -239,6 +248,14 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                                      : "; with --body-units " + fits + " it would be " +
                                            number(in_file * Units::parse(fits).metres_per_unit) + " m"));
     }
+    // A body is closed or nearly so (a scan may lack its soles or the top of its head); a garment's
+    // openings (neck, cuffs, hem, waist) add up to more than its wearer's height.
+    const double open = analyse_topology(result.body).boundary_length;
+    if (open > body_height) {
+      throw InputError(body_file.path + ": does not look like a body: " + number(open) +
+                       " m of open edges on a mesh " + number(body_height) +
+                       " m tall (a body is closed or nearly so; is it a garment?)");
+    }
     for (DressedGarment& g : result.garments) {
       const double size = bounding_box(g.mesh).sizes().maxCoeff();
       if (size >= 0.1 * body_height && size <= 1.5 * body_height) continue;
@@ -285,43 +302,66 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                                                           " meshes cut into parts (the others have label files)");
   }
 
-  // Placement, unless the garment already sits on this body.
+  // Placement, unless the garment already sits on this body. Garments to place are placed together,
+  // as one outfit whose pieces are worn in the order given, so that their parts share one global
+  // fit and outer pieces are pushed out of inner ones.
   const InsideTest inside(result.body);
   {
     Stage stage(result, options, "placement");
-    std::string report;
-    int placed = 0;
-    for (DressedGarment& g : result.garments) {
+    std::string report, names;
+    TriangleMesh outfit;
+    std::vector<std::size_t> to_place;
+    std::vector<Eigen::Index> first;
+    std::vector<int> layer_of;
+    for (std::size_t k = 0; k < result.garments.size(); ++k) {
+      DressedGarment& g = result.garments[k];
       g.crossings_authored = count_intersections(g.mesh.V, g.mesh.F);
       const SurfaceFit before = surface_fit(g.mesh.V, inside);
-      const bool fits = before.inside <= options.fit_inside * g.mesh.num_vertices() &&
-                        before.mean_distance <= options.fit_distance * body_height;
-      if (fits) {
+      const std::string as_given = " (mean distance " + number(100.0 * before.mean_distance / body_height, 2) +
+                                   " % of its height, " + std::to_string(before.inside) + " vertices inside)";
+      if (before.inside <= options.fit_inside * g.mesh.num_vertices() &&
+          before.mean_distance <= options.fit_distance * body_height) {
         g.placed = g.mesh.V;
-        report += (report.empty() ? "" : "; ") + g.name + " already on the body (mean distance " +
-                  number(100.0 * before.mean_distance / body_height, 2) + " % of its height, " +
-                  std::to_string(before.inside) + " vertices inside)";
-      } else {
-        g.placement = place_garment(g.mesh, result.body, options.placement);
-        g.placed_by_placement = true;
-        g.placed = g.placement.V;
-        ++placed;
-        // The quality gate: a placement that shrank or blew the garment up, or left it off the body,
-        // is refused rather than passed on.
-        const double scale = g.placement.global_scale;
-        const SurfaceFit after = surface_fit(g.placed, inside);
-        if (!(scale >= 0.4 && scale <= 2.5) || after.mean_distance > 0.1 * body_height) {
-          throw InputError(g.file.path + ": the placement does not fit the garment on the body (scale " +
-                           number(scale) + ", mean distance to the body " + number(after.mean_distance) +
-                           " m): check its units and that it is a garment for a person");
-        }
-        report += (report.empty() ? "" : "; ") + g.name + " placed (scale " + number(scale) + ", " +
-                  std::to_string(g.placement.matching.matches.size()) + " parts matched)";
+        report += (report.empty() ? "" : "; ") + g.name + " already on the body" + as_given;
+        continue;
       }
+      report += (report.empty() ? "" : "; ") + g.name + " not on the body as given" + as_given;
+      to_place.push_back(k);
+      first.push_back(outfit.V.rows());
+      append_mesh(outfit, g.mesh, "");
+      layer_of.insert(layer_of.end(), static_cast<std::size_t>(g.mesh.num_vertices()), static_cast<int>(k));
+      names += (names.empty() ? "" : ", ") + g.file.path;
+    }
+    if (!to_place.empty()) {
+      first.push_back(outfit.V.rows());
+      distinct_label_names(outfit);
+      PlacementOptions o = options.placement;
+      o.vertex_layers = Eigen::Map<const Eigen::VectorXi>(layer_of.data(), static_cast<Eigen::Index>(layer_of.size()));
+      const PlacementResult p = place_garment(outfit, result.body, o);
+      // The quality gate: a placement that shrank or blew the garments up, or left them off the body,
+      // is refused rather than passed on.
+      const double scale = p.global_scale;
+      const SurfaceFit after = surface_fit(p.V, inside);
+      if (!(scale >= 0.4 && scale <= 2.5) || after.mean_distance > 0.1 * body_height) {
+        throw InputError(names + ": the placement does not fit the garment on the body (scale " + number(scale) +
+                         ", mean distance to the body " + number(after.mean_distance) +
+                         " m): check its units and that it is a garment for a person");
+      }
+      for (std::size_t i = 0; i < to_place.size(); ++i) {
+        DressedGarment& g = result.garments[to_place[i]];
+        g.placement = p;
+        g.placed_by_placement = true;
+        g.placed = p.V.middleRows(first[i], first[i + 1] - first[i]);
+      }
+      report += (report.empty() ? "" : "; ") + std::string(to_place.size() > 1 ? "placed together" : "placed") +
+                " (scale " + number(scale) + ", " + std::to_string(p.matching.matches.size()) + " parts matched, " +
+                p.global_method + ")";
+    }
+    for (DressedGarment& g : result.garments) {
       g.crossings_placed = count_intersections(g.placed, g.mesh.F);
       g.inside_placed = surface_fit(g.placed, inside).inside;
     }
-    stage.done(placed > 0, report);
+    stage.done(!to_place.empty(), report);
   }
 
   // Layers: inside to outside as given.
@@ -347,8 +387,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       separation = std::max(separation, g.thickness);
       report += (report.empty() ? "" : ", ") + g.name + " " + number(1e3 * g.thickness, 2) + " mm";
     }
-    stage.done(true, report + " (mass per area over fibre density × solidity 0.25); no fabric is a fill "
-                              "that needs a double layer");
+    report += " (mass per area over fibre density × solidity 0.25); no fabric is a fill that needs a double layer";
+    stage.done(true, report);
   }
 
   // Settle.
@@ -362,10 +402,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       SimulationOptions o = simulation_options(options.quality, duration);
       o.colliders.push_back(Collider::mesh(std::make_shared<const MeshDistance>(result.body)));
       std::vector<ClothModel> models;
-      for (std::size_t k = 0; k < result.garments.size(); ++k) {
-        const DressedGarment& g = result.garments[k];
-        models.push_back(build_cloth(rest_shape(g), fabrics[k]));
-      }
+      for (std::size_t k = 0; k < result.garments.size(); ++k)
+        models.push_back(build_cloth(rest_shape(result.garments[k]), fabrics[k]));
       const std::vector<int> first = garment_offsets(models);
       const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
       ClothSimulator sim(model, o);
@@ -375,7 +413,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
       RunOptions run_options;
       run_options.duration = duration;
-      result.settle = run(sim, run_options, {}, [&](const StepResult&) {
+      result.settle = run(sim, run_options, {}, [&](const StepResult& sr) {
         if (options.on_settle) options.on_settle(sim.time(), duration);
       });
       result.settled = true;

@@ -18,9 +18,9 @@
 
 namespace dresskit {
 
-/// How long and how finely to settle: `fast` (steps up to 1/60 s, 4 iterations, at most 0.5 s
-/// simulated), `balanced` (the simulator's defaults, at most 1 s) or `accurate` (steps up to
-/// 1/240 s, 20 iterations, at most 2 s); every one stops early once the garments are at rest.
+/// How long and how finely to settle: `fast` (the simulator's defaults, at most 0.5 s simulated),
+/// `balanced` (the defaults, at most 1 s) or `accurate` (steps up to 1/240 s, 20 projective
+/// iterations, at most 2 s); every one stops early once the garments are at rest.
 enum class DressQuality { fast, balanced, accurate };
 /// "fast", "balanced", "accurate"; throws InputError naming the value otherwise.
 DressQuality parse_quality(const std::string& text);
@@ -46,8 +46,10 @@ struct DressOptions {
   SegmentationOptions segmentation;
   /// A garment counts as already on the body, and is not placed, when at most this fraction of its
   /// vertices lies deeper than 2 mm inside the body and its vertices lie within on average
-  /// `fit_distance` × the body's height of the body's surface [unitless].
-  double fit_inside = 0.01, fit_distance = 0.03;
+  /// `fit_distance` × the body's height of the body's surface [unitless]. (A garment made for a
+  /// body often dips a few millimetres into it here and there: MakeHuman's casualsuit on its own
+  /// body has 5 % of its vertices so; settling pushes them out.)
+  double fit_inside = 0.1, fit_distance = 0.03;
   /// Called when a stage ends, and while settling with the simulated seconds done of at most total.
   std::function<void(const struct DressStage&)> on_stage;
   std::function<void(double done, double total)> on_settle;

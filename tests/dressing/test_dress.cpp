@@ -1,0 +1,233 @@
+// The dressing pipeline on real bodies and garments: placement and settling against the reference
+// refit of a MakeHuman outfit, units across files, layers of two garment files, stages left out when
+// a scene does not need them, and bad input.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <map>
+
+#include "dresskit/cloth/self_collision.h"
+#include "dresskit/cloth/triangle_bvh.h"
+#include "dresskit/dressing/dress.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/inside.h"
+#include "dresskit/mesh/io.h"
+#include "dresskit/mesh/topology.h"
+#include "test_data.h"
+
+using namespace dresskit;
+
+namespace {
+
+std::string body_path(const std::string& name) { return test::data_dir() + "/bodies/" + name + ".obj"; }
+std::string outfit_path(const std::string& name) { return test::data_dir() + "/garments/mh_" + name + ".obj"; }
+
+MeshFile in_units(const std::string& path, const char* units) {
+  MeshFile f{path, {}, "", ""};
+  f.load.units = Units::parse(units);
+  return f;
+}
+
+const DressStage& stage(const DressResult& r, const std::string& name) {
+  const auto it = std::find_if(r.stages.begin(), r.stages.end(), [&](const DressStage& s) { return s.name == name; });
+  if (it == r.stages.end()) throw std::runtime_error("no stage " + name);
+  return *it;
+}
+
+/// Mean distance between corresponding vertices, as a fraction of the body's height.
+double mean_distance(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, const TriangleMesh& body) {
+  const double height = body.V.col(1).maxCoeff() - body.V.col(1).minCoeff();
+  return (a - b).rowwise().norm().mean() / height;
+}
+
+/// The woman's casualsuit (dm) and where it sits on the child by its MakeHuman binding.
+struct CasualsuitOnTheChild {
+  MeshFile body = in_units(body_path("mh_girl_child_11y"), "dm");
+  GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), ""};
+  TriangleMesh reference = [] {
+    LoadOptions dm;
+    dm.units = Units::parse("dm");
+    return load_mesh(test::data_dir() + "/reference/female_casualsuit01__on__mh_girl_child_11y.obj", dm);
+  }();
+};
+
+}  // namespace
+
+// Without label files: both meshes segmented, the outfit placed and settled. Independent checks: the
+// reference refit (not used by the pipeline) and CGAL's inside test on the body.
+TEST(Dress, CasualsuitOnTheChildWithoutLabelFiles) {
+  DRESSKIT_REQUIRE_DATA();
+  const CasualsuitOnTheChild c;
+  const DressResult r = dress(c.body, {c.garment});
+  ASSERT_EQ(r.garments.size(), 1u);
+  const DressedGarment& g = r.garments[0];
+  EXPECT_TRUE(stage(r, "segmentation").ran);
+  EXPECT_TRUE(stage(r, "placement").ran);
+  EXPECT_TRUE(stage(r, "settle").ran);
+  EXPECT_FALSE(stage(r, "layers").ran);  // one garment
+  ASSERT_EQ(g.placed.rows(), c.reference.num_vertices());
+  EXPECT_LT(mean_distance(g.placed, c.reference.V, r.body), 0.02);
+  EXPECT_LT(mean_distance(g.dressed, c.reference.V, r.body), 0.03);
+  // Left where it was authored, it is far off: the bounds above can fail.
+  EXPECT_GT(mean_distance(g.mesh.V, c.reference.V, r.body), 0.05);
+  EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
+  EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored);
+  EXPECT_LE(g.max_strain_dressed, 0.5);
+  EXPECT_TRUE(g.dressed.allFinite());
+}
+
+// The same garment in decimetres on a body in metres with another topology: worn (near the body),
+// nothing inside it, no more crossings than as authored.
+TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
+  DRESSKIT_REQUIRE_DATA();
+  const MeshFile body = in_units(body_path("gc_mean_all"), "m");
+  const GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), "11oz-black-denim"};
+  DressOptions o;
+  o.quality = DressQuality::fast;
+  const DressResult r = dress(body, {garment}, o);
+  const DressedGarment& g = r.garments[0];
+  EXPECT_NEAR(r.body.V.col(1).maxCoeff() - r.body.V.col(1).minCoeff(), 1.7, 0.2);
+  EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
+  EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored);
+  const TriangleBvh tree(r.body.V, r.body.F);
+  int near = 0;
+  for (Eigen::Index i = 0; i < g.dressed.rows(); ++i) {
+    Eigen::Vector3d q;
+    double d2 = 0.0;
+    tree.closest(g.dressed.row(i).transpose(), &q, &d2);
+    near += d2 < 0.08 * 0.08;
+  }
+  EXPECT_GT(near, 0.95 * static_cast<double>(g.dressed.rows()));
+}
+
+// Two garment files given inside to outside (the casualsuit's jeans and t-shirt, written apart):
+// placed together, settled with no crossing between them, and where the t-shirt lies over the
+// jeans it is the farther from the body.
+TEST(Dress, TwoGarmentFilesKeepTheirLayerOrder) {
+  DRESSKIT_REQUIRE_DATA();
+  const test::TempDir dir;
+  const CasualsuitOnTheChild c;
+  TriangleMesh outfit = load_mesh(c.garment.file.path, c.garment.file.load);
+  int pieces = 0;
+  const std::vector<int> piece = face_components(outfit.F, outfit.num_vertices(), &pieces);
+  ASSERT_EQ(pieces, 2);
+  std::vector<std::string> paths;
+  for (int p = 0; p < 2; ++p) {
+    std::vector<int> rows(static_cast<std::size_t>(outfit.num_vertices()), -1);
+    TriangleMesh m;
+    std::vector<Eigen::Vector3i> faces;
+    std::vector<Eigen::RowVector3d> points;
+    for (int f = 0; f < outfit.num_faces(); ++f) {
+      if (piece[static_cast<std::size_t>(f)] != p) continue;
+      Eigen::Vector3i face;
+      for (int k = 0; k < 3; ++k) {
+        int& row = rows[static_cast<std::size_t>(outfit.F(f, k))];
+        if (row < 0) {
+          row = static_cast<int>(points.size());
+          points.push_back(outfit.V.row(outfit.F(f, k)) * 10.0);  // back to dm
+        }
+        face(k) = row;
+      }
+      faces.push_back(face);
+    }
+    m.V.resize(static_cast<Eigen::Index>(points.size()), 3);
+    for (std::size_t i = 0; i < points.size(); ++i) m.V.row(static_cast<Eigen::Index>(i)) = points[i];
+    m.F.resize(static_cast<Eigen::Index>(faces.size()), 3);
+    for (std::size_t i = 0; i < faces.size(); ++i) m.F.row(static_cast<Eigen::Index>(i)) = faces[i].transpose();
+    paths.push_back(dir.file("piece" + std::to_string(p) + ".obj"));
+    save_mesh(m, paths.back());
+  }
+  // The piece with the lower top (the jeans) inside.
+  auto top = [](const std::string& path) { return load_mesh(path).V.col(1).maxCoeff(); };
+  if (top(paths[0]) > top(paths[1])) std::swap(paths[0], paths[1]);
+  DressOptions o;
+  o.quality = DressQuality::fast;
+  const DressResult r = dress(c.body, {{in_units(paths[0], "dm"), ""}, {in_units(paths[1], "dm"), ""}}, o);
+  ASSERT_EQ(r.garments.size(), 2u);
+  EXPECT_TRUE(stage(r, "layers").ran);
+  EXPECT_EQ(r.layer_crossings, 0);
+  const InsideTest body(r.body);
+  EXPECT_EQ(body.count_deeper(r.garments[0].dressed, 0.002) + body.count_deeper(r.garments[1].dressed, 0.002), 0);
+  // Over the jeans (within 5 cm of them, 1 cm or more from their openings' edges), t-shirt
+  // vertices lie farther out than the jeans beneath.
+  const DressedGarment &jeans = r.garments[0], &shirt = r.garments[1];
+  const TriangleBvh inner(jeans.dressed, jeans.mesh.F);
+  std::map<std::pair<int, int>, int> edge_faces;
+  for (int f = 0; f < jeans.mesh.num_faces(); ++f) {
+    for (int k = 0; k < 3; ++k) {
+      const int a = jeans.mesh.F(f, k), b = jeans.mesh.F(f, (k + 1) % 3);
+      ++edge_faces[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::vector<Eigen::Vector3d> edge_points;
+  for (const auto& [e, faces] : edge_faces) {
+    if (faces == 1) edge_points.push_back(jeans.dressed.row(e.first).transpose());
+  }
+  int over = 0, outside = 0;
+  for (Eigen::Index i = 0; i < shirt.dressed.rows(); ++i) {
+    const Eigen::Vector3d p = shirt.dressed.row(i).transpose();
+    Eigen::Vector3d q;
+    double d2 = 0.0;
+    if (inner.closest(p, &q, &d2, 0.05 * 0.05) < 0) continue;
+    if (std::any_of(edge_points.begin(), edge_points.end(), [&](const Eigen::Vector3d& e) { return (e - q).norm() < 0.01; }))
+      continue;
+    ++over;
+    outside += body.signed_distance(p) > body.signed_distance(q);
+  }
+  EXPECT_GT(over, 20);
+  EXPECT_GE(outside, 0.98 * over);
+}
+
+// A garment on the body it was made for is not placed; label files replace segmentation.
+TEST(Dress, StagesLeftOutWhenTheSceneDoesNotNeedThem) {
+  DRESSKIT_REQUIRE_DATA();
+  const std::string labels = test::data_dir() + "/labels/";
+  MeshFile body = in_units(body_path("mh_woman_young_average"), "dm");
+  body.labels = labels + "mh_body_part_labels.json";
+  GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), ""};
+  garment.file.labels = labels + "mh_clothes_part_labels.json";
+  DressOptions o;
+  o.settle = false;
+  const DressResult r = dress(body, {garment}, o);
+  EXPECT_FALSE(stage(r, "segmentation").ran);
+  EXPECT_FALSE(stage(r, "placement").ran);
+  EXPECT_NE(stage(r, "placement").reason.find("already on the body"), std::string::npos);
+  EXPECT_FALSE(stage(r, "settle").ran);
+  EXPECT_FALSE(r.garments[0].placed_by_placement);
+  EXPECT_EQ((r.garments[0].placed - r.garments[0].mesh.V).cwiseAbs().maxCoeff(), 0.0);
+  ASSERT_EQ(r.body_parts.size(), 6u);
+  for (const DressPart& p : r.body_parts) EXPECT_EQ(p.confidence, 1.0);
+  // The same garment on the child is placed: the fit check can say no.
+  const DressResult child = dress(in_units(body_path("mh_girl_child_11y"), "dm"), {garment}, o);
+  EXPECT_TRUE(stage(child, "placement").ran);
+  EXPECT_TRUE(stage(child, "segmentation").ran);  // the body has no label file this time
+}
+
+TEST(Dress, BadInputNamesTheFileAndWhatIsWrong) {
+  DRESSKIT_REQUIRE_DATA();
+  const GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), ""};
+  DressOptions o;
+  o.settle = false;
+  auto message = [&](const MeshFile& body, const GarmentFile& g) {
+    try {
+      dress(body, {g}, o);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // A forgotten --units dm: a 17 m person.
+  const std::string tall = message(in_units(body_path("mh_woman_young_average"), "m"), garment);
+  EXPECT_NE(tall.find("mh_woman_young_average.obj"), std::string::npos) << tall;
+  EXPECT_NE(tall.find("--body-units dm"), std::string::npos) << tall;
+  // A garment given as the body.
+  const std::string not_body = message(in_units(outfit_path("female_casualsuit01"), "dm"), garment);
+  EXPECT_NE(not_body.find("does not look like a body"), std::string::npos) << not_body;
+  // An unknown fabric; a missing file.
+  GarmentFile silk = garment;
+  silk.fabric = "moon-silk";
+  EXPECT_NE(message(in_units(body_path("mh_woman_young_average"), "dm"), silk).find("moon-silk"), std::string::npos);
+  EXPECT_NE(message(in_units("/nonexistent/body.obj", "dm"), garment).find("/nonexistent/body.obj"),
+            std::string::npos);
+}
