@@ -1,0 +1,99 @@
+// The dressing pipeline on real bodies and garments from ../shared/data, with the defaults and no
+// label files: seconds per stage and for the whole run, and the result measured independently —
+// vertices deeper than 2 mm inside the body (CGAL's inside test), the garment's own crossings, the
+// largest strain, and where a reference refit exists the mean vertex distance to it in % of the
+// body's height (placed and dressed). One row per case and quality. Writes OUT.csv.
+//   bench_dress OUT.csv [--qualities fast,balanced]
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "dresskit/cloth/self_collision.h"
+#include "dresskit/dressing/dress.h"
+#include "dresskit/mesh/inside.h"
+#include "dresskit/testing/data.h"
+
+using namespace dresskit;
+
+namespace {
+
+struct Case {
+  std::string name, body, body_units, garment, garment_units, fabric, reference;
+};
+
+double distance_percent(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, const TriangleMesh& body) {
+  const double height = body.V.col(1).maxCoeff() - body.V.col(1).minCoeff();
+  return 100.0 * (a - b).rowwise().norm().mean() / height;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << "usage: bench_dress OUT.csv [--qualities fast,balanced]\n";
+    return 64;
+  }
+  std::vector<std::string> qualities{"fast", "balanced"};
+  if (argc == 4 && std::string(argv[2]) == "--qualities") {
+    qualities.clear();
+    std::stringstream in(argv[3]);
+    for (std::string q; std::getline(in, q, ',');) qualities.push_back(q);
+  }
+  const std::string data = testing::data_dir();
+  const std::vector<Case> cases{
+      {"casualsuit_on_child", "bodies/mh_girl_child_11y.obj", "dm", "garments/mh_female_casualsuit01.obj", "dm", "",
+       "reference/female_casualsuit01__on__mh_girl_child_11y.obj"},
+      {"casualsuit_dm_on_gc_mean_m", "bodies/gc_mean_all.obj", "m", "garments/mh_female_casualsuit01.obj", "dm", "", ""},
+      {"casualsuit_denim_on_gc_mean", "bodies/gc_mean_all.obj", "m", "garments/mh_female_casualsuit01.obj", "dm",
+       "11oz-black-denim", ""},
+      {"male_casualsuit_on_woman", "bodies/mh_woman_young_average.obj", "dm", "garments/mh_male_casualsuit02.obj", "dm",
+       "", ""},
+  };
+  std::ofstream out(argv[1]);
+  out << "case,quality,ok,seconds,load_s,segmentation_s,placement_s,settle_s,steps,stopped,inside_2mm,crossings_authored,"
+         "crossings_dressed,max_strain,placed_error_pct,dressed_error_pct\n";
+  for (const Case& c : cases) {
+    for (const std::string& q : qualities) {
+      MeshFile body;
+      body.path = data + "/" + c.body;
+      body.load.units = Units::parse(c.body_units);
+      GarmentFile garment;
+      garment.file.path = data + "/" + c.garment;
+      garment.file.load.units = Units::parse(c.garment_units);
+      garment.fabric = c.fabric;
+      DressOptions o;
+      o.quality = parse_quality(q);
+      std::ostringstream row;
+      try {
+        const DressResult r = dress(body, {garment}, o);
+        const DressedGarment& g = r.garments[0];
+        auto seconds = [&](const std::string& name) {
+          for (const DressStage& s : r.stages)
+            if (s.name == name) return s.seconds;
+          return 0.0;
+        };
+        double placed_error = -1.0, dressed_error = -1.0;
+        if (!c.reference.empty()) {
+          LoadOptions lo;
+          lo.units = Units::parse(c.garment_units);
+          const TriangleMesh reference = load_mesh(data + "/" + c.reference, lo);
+          placed_error = distance_percent(g.placed, reference.V, r.body);
+          dressed_error = distance_percent(g.dressed, reference.V, r.body);
+        }
+        row << c.name << ',' << q << ",1," << r.seconds << ',' << seconds("load") << ',' << seconds("segmentation")
+            << ',' << seconds("placement") << ',' << seconds("settle") << ',' << r.settle.totals.steps << ",\""
+            << r.settle.stopped_reason << "\"," << InsideTest(r.body).count_deeper(g.dressed, 0.002) << ','
+            << g.crossings_authored << ',' << count_intersections(g.dressed, g.mesh.F) << ','
+            << g.max_strain_dressed << ',' << placed_error << ',' << dressed_error;
+      } catch (const std::exception& e) {
+        row << c.name << ',' << q << ",0,,,,,,,\"" << e.what() << "\",,,,,,";
+      }
+      out << row.str() << '\n' << std::flush;
+      std::cout << row.str() << std::endl;
+    }
+  }
+  return 0;
+}
