@@ -28,7 +28,21 @@ void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const
   std::vector<std::string> per_source(source_count);  // part name per source vertex
   try {
     const json* list = nullptr;
-    if (j.contains("labels") && j["labels"].is_array()) {
+    const bool from_segment = j.contains("vertex_labels") && j.contains("part_names");
+    if (from_segment) {  // segment's labels.json: part ids per vertex and their names
+      const json& ids = j["vertex_labels"];
+      const json& names = j["part_names"];
+      if (static_cast<int>(ids.size()) != source_count)
+        throw InputError(labels_path + ": " + std::to_string(ids.size()) + " vertex_labels for a mesh of " +
+                         std::to_string(source_count) + " vertices");
+      for (int i = 0; i < source_count; ++i) {
+        const int id = ids[static_cast<std::size_t>(i)].get<int>();
+        if (id >= static_cast<int>(names.size()))
+          throw InputError(labels_path + ": vertex " + std::to_string(i) + " has part " + std::to_string(id) +
+                           " of " + std::to_string(names.size()) + " part_names");
+        if (id >= 0) per_source[static_cast<std::size_t>(i)] = names[static_cast<std::size_t>(id)].get<std::string>();
+      }
+    } else if (j.contains("labels") && j["labels"].is_array()) {
       list = &j["labels"];
     } else if (j.contains("labels") && j["labels"].is_object()) {
       std::vector<std::string> keys;
@@ -52,7 +66,7 @@ void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const
         throw InputError(labels_path + ": " + std::to_string(list->size()) +
                          " labels for a mesh of " + std::to_string(source_count) + " vertices");
       for (int i = 0; i < source_count; ++i) per_source[i] = (*list)[i].get<std::string>();
-    } else {  // {"part": [indices]}
+    } else if (!from_segment) {  // {"part": [indices]}
       for (const auto& [part, indices] : j.items()) {
         if (!indices.is_array()) continue;
         for (const auto& index : indices) {

@@ -413,7 +413,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
       RunOptions run_options;
       run_options.duration = duration;
-      result.settle = run(sim, run_options, {}, [&](const StepResult& sr) {
+      result.settle = run(sim, run_options, {}, [&](const StepResult&) {
         if (options.on_settle) options.on_settle(sim.time(), duration);
       });
       result.settled = true;

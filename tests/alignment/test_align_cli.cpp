@@ -95,3 +95,23 @@ TEST(AlignCli, PlacementWritesPosedGarmentAndMatches) {
   EXPECT_EQ(posed.num_vertices(), 2197);
   EXPECT_LT(posed.V.col(1).maxCoeff(), 1.3);  // metres, on a 1.27 m child
 }
+
+// segment's labels.json is a labels file for align: the child and the casualsuit segmented, then
+// placed with those labels, every garment part matched.
+TEST(AlignCli, PlacementReadsSegmentsLabels) {
+  DRESSKIT_REQUIRE_DATA();
+  test::TempDir dir;
+  const std::string d = test::data_dir();
+  const std::string garment = d + "/garments/mh_female_casualsuit01.obj", body = d + "/bodies/mh_girl_child_11y.obj";
+  ASSERT_EQ(run(dir, "segment " + garment + " --units dm -o " + dir.file("garment")).code, 0);
+  ASSERT_EQ(run(dir, "segment " + body + " --units dm -o " + dir.file("body")).code, 0);
+  const CliRun r = run(dir, "align " + garment + " " + body + " --units dm --garment-labels " +
+                                dir.file("garment/labels.json") + " --body-labels " + dir.file("body/labels.json") +
+                                " -o " + dir.file("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(dir.file("out/result.json")));
+  const auto segmented = nlohmann::json::parse(slurp(dir.file("garment/labels.json")));
+  EXPECT_EQ(j["matches"].size(), segmented["part_names"].size());
+  EXPECT_TRUE(j["unmatched_garment_parts"].empty());
+  EXPECT_EQ(load_mesh(dir.file("out/posed.obj")).num_vertices(), 2197);
+}
