@@ -3,7 +3,10 @@
 // vertices deeper than 2 mm inside the body (CGAL's inside test), the garment's own crossings, the
 // largest strain, and where a reference refit exists the mean vertex distance to it in % of the
 // body's height (placed and dressed). One row per case and quality. Writes OUT.csv.
-//   bench_dress OUT.csv [--qualities fast,balanced]
+//   bench_dress OUT.csv [--qualities fast,balanced] [--cases a,b]
+// Plot of error against time for the cases with a reference:
+//   /usr/bin/python3 scripts/plot_bench.py dress OUT.csv OUT.png
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -36,11 +39,21 @@ int main(int argc, char** argv) {
     std::cerr << "usage: bench_dress OUT.csv [--qualities fast,balanced]\n";
     return 64;
   }
-  std::vector<std::string> qualities{"fast", "balanced"};
-  if (argc == 4 && std::string(argv[2]) == "--qualities") {
-    qualities.clear();
-    std::stringstream in(argv[3]);
-    for (std::string q; std::getline(in, q, ',');) qualities.push_back(q);
+  auto split = [](const std::string& text) {
+    std::vector<std::string> items;
+    std::stringstream in(text);
+    for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+    return items;
+  };
+  std::vector<std::string> qualities{"fast", "balanced"}, only;
+  for (int a = 2; a + 1 < argc; a += 2) {
+    const std::string key = argv[a];
+    if (key == "--qualities") qualities = split(argv[a + 1]);
+    else if (key == "--cases") only = split(argv[a + 1]);
+    else {
+      std::cerr << "bench_dress: unknown option " << key << "\n";
+      return 64;
+    }
   }
   const std::string data = testing::data_dir();
   const std::vector<Case> cases{
@@ -56,6 +69,7 @@ int main(int argc, char** argv) {
   out << "case,quality,ok,seconds,load_s,segmentation_s,placement_s,settle_s,steps,stopped,inside_2mm,crossings_authored,"
          "crossings_dressed,max_strain,placed_error_pct,dressed_error_pct\n";
   for (const Case& c : cases) {
+    if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
     for (const std::string& q : qualities) {
       MeshFile body;
       body.path = data + "/" + c.body;

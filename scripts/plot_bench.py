@@ -10,6 +10,7 @@ usage: scripts/plot_bench.py stability IN.csv OUT.png
        scripts/plot_bench.py sphere A.csv,B.csv,... OUT.png (bench_cloth_sphere CSVs and
                                                        docs/data/blender_cloth_on_sphere.csv)
        scripts/plot_bench.py drape IN.csv OUT.png       (bench_drape's CSV: the contact envelope)
+       scripts/plot_bench.py dress IN.csv OUT.png       (bench_dress's CSV: error against time)
 """
 import csv
 import sys
@@ -234,8 +235,34 @@ def drape(rows, out):
     fig.savefig(out, dpi=90)
 
 
+def dress(rows, out):
+    """Per case with a reference: the mean distance to it (% of body height) against the whole
+    run's seconds, one point per quality, and the placed garment (before settling) at the placement's
+    time."""
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    for case in dict.fromkeys(r["case"] for r in rows):
+        points = [r for r in rows if r["case"] == case and r["ok"] == "1" and float(r["dressed_error_pct"]) >= 0]
+        if not points:
+            continue
+        first = points[0]
+        placed_at = sum(float(first[k]) for k in ("load_s", "segmentation_s", "placement_s"))
+        xs = [placed_at] + [float(r["seconds"]) for r in points]
+        ys = [float(first["placed_error_pct"])] + [float(r["dressed_error_pct"]) for r in points]
+        ax.plot(xs, ys, "o-", label=case)
+        ax.annotate("placed", (xs[0], ys[0]), textcoords="offset points", xytext=(5, 5), fontsize=8)
+        for r, x, y in zip(points, xs[1:], ys[1:]):
+            ax.annotate(r["quality"], (x, y), textcoords="offset points", xytext=(5, 5), fontsize=8)
+    ax.set_xscale("log")
+    ax.set_xlabel("whole run [s] (placed: load + segmentation + placement)")
+    ax.set_ylabel("mean distance to the reference [% of body height]")
+    ax.set_title("dress: error against time per quality")
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 if __name__ == "__main__":
     kind, src, out = sys.argv[1:4]
     rows = [r for path in src.split(",") for r in csv.DictReader(open(path))]
     {"stability": stability, "error": error, "heat": heat, "surface": surface,
-     "segmentation": segmentation, "alignment": alignment, "sphere": sphere, "drape": drape}[kind](rows, out)
+     "segmentation": segmentation, "alignment": alignment, "sphere": sphere, "drape": drape, "dress": dress}[kind](rows, out)
