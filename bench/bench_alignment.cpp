@@ -1,4 +1,4 @@
-// Alignment accuracy and speed (issue 6): known-transform trials per angle with local ICP and with
+// Alignment accuracy and speed: known-transform trials per angle with local ICP and with
 // the global multi-start, the 10k-point single-part ICP time, error against run time, the
 // Cramér–Rao bound of the rotation error per shape, and a check with sources sampled on the
 // triangles instead of at the vertices.

@@ -1,4 +1,4 @@
-// Collision cost (issue 7): time per step split by phase — forces (and the implicit system's
+// Collision cost: time per step split by phase — forces (and the implicit system's
 // assembly), solve, layer guard and length limits, seams, body collision, cloth–cloth collision —
 // for (1) a square denim cape dropped over the gc_mean_all body (47.5k triangles) with 5k, 10k and
 // 20k particles, and (2) the sewn tube of examples/collisions at three resolutions (its seams

@@ -1,4 +1,4 @@
-// Error against run time (issue 3): the 81×81 hanging cloth (6,561 vertices, 1 m, gray-interlock,
+// Error against run time: the 81×81 hanging cloth (6,561 vertices, 1 m, gray-interlock,
 // pinned at its two top corners) simulated for 1 s by each integrator over a range of time steps
 // and solver tolerances (projective dynamics: iterations per step). Error = RMS distance of the
 // vertices from a reference run (implicit Euler at 1/4800 s, CG tolerance 1e-10) at t = 1 s, over

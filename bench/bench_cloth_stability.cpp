@@ -1,4 +1,4 @@
-// Stability envelope (issue 3): for each integrator, spring stiffness k (normalised by particle
+// Stability envelope: for each integrator, spring stiffness k (normalised by particle
 // mass, 1e1 … 1e8 N/m per kg) × time step (1/1000 … 1/24 s): a 10×10 cloth of unit-mass particles
 // pinned at two corners, without gravity, released from a random perturbation of 10 % of the
 // spacing, runs for 1 s undamped (projective dynamics with backward Euler, BDF2, TR-BDF2 and the

@@ -1,4 +1,4 @@
-// Explicit force throughput (issue 3): spring force evaluations per second on one core for about a
+// Explicit force throughput: spring force evaluations per second on one core for about a
 // million springs, double precision, through ClothSimulator::forces() (springs plus per-particle
 // terms, into a reused buffer) on a 410×410 grid with structural, shear and bending springs.
 // Usage: bench_cloth_throughput [repetitions=20]

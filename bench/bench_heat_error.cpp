@@ -1,4 +1,4 @@
-// Error against run time for the heat solver (issue 4): the thickness problem of gray-interlock
+// Error against run time for the heat solver: the thickness problem of gray-interlock
 // (37 °C skin, −10 °C air, 3600 s, solidity 0.25, the default domain) solved by each scheme over a
 // grid of cells × time steps. Errors against the erfc closed form of the semi-infinite medium (the
 // domain is 8 √(α_parallel t) deep, so the far boundary changes the answer by < 1e-20): the

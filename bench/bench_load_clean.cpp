@@ -1,4 +1,4 @@
-// Load + clean benchmark (issue 2): milliseconds per phase for the real bodies in ../shared/data.
+// Load + clean benchmark: milliseconds per phase for the real bodies in ../shared/data.
 // Usage: bench_load_clean [repetitions=7]; data from DRESSKIT_DATA_DIR or ../shared/data.
 // Prints the median of the repetitions for each phase, and the machine's CPU model.
 #include <algorithm>

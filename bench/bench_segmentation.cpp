@@ -1,4 +1,4 @@
-// Segmentation benchmark (issue 5) on gc_mean_all (23 752 vertices):
+// Segmentation benchmark on gc_mean_all (23 752 vertices):
 //  1. end to end (load + segment_mesh) on one thread, median of the repetitions, with the phases
 //  and
 //     the eigen residual max ‖L x − λ x‖;

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Side by side with scikit-learn's SpectralClustering on dresskit's own affinity (issue 5).
+"""Side by side with scikit-learn's SpectralClustering on dresskit's own affinity.
 
 usage: bench/bench_sklearn.py DIR [REPS]
 DIR is what `bench_segmentation --export DIR` wrote: gc_affinity.mtx (the affinity of gc_mean_all),

@@ -242,7 +242,7 @@ TEST(Placement, PlacedOutfitDrapesOutOfItsCrossings) {
   EXPECT_EQ(inside, 0);
 }
 
-// The chain without label files: segmentation (issue 5) cuts and names both meshes, and the
+// The chain without label files: segmentation cuts and names both meshes, and the
 // placement matches what it can by name (the legs) and the rest by descriptors. Measured:
 // mean 0.98 %, 95th percentile 2.51 %, 0 inside, 42 % stretch (file labels: 1.06 / 2.15 / 0 / 33 %).
 TEST(Placement, CasualsuitOnTheChildWithSegmentationLabels) {

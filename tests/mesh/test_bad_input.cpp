@@ -1,4 +1,4 @@
-// Every bad input of issue 2 gives an InputError whose message is one line naming the file.
+// Every bad input of the loaders gives an InputError whose message is one line naming the file.
 #include <gtest/gtest.h>
 
 #include <fstream>

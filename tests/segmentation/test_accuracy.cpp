@@ -1,5 +1,5 @@
 // Segmentation accuracy against the ground truth of the shared data (../shared/data/labels):
-// per-part IoU after Hungarian matching and 1 − Rand index, with the goals of issue 5 as
+// per-part IoU after Hungarian matching and 1 − Rand index, with the segmentation goals as
 // thresholds, and the names of the parts (left = the character's left). The figures are printed as
 // a table.
 #include <gtest/gtest.h>
