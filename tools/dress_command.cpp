@@ -179,6 +179,7 @@ int DressCommand::run() {
          {"crossings", {{"authored", g.crossings_authored}, {"placed", g.crossings_placed}, {"dressed", g.crossings_dressed}}},
          {"vertices_inside_body_2mm", {{"placed", g.inside_placed}, {"dressed", g.inside_dressed}}},
          {"max_strain", g.max_strain_dressed},
+         {"waistband_vertices", g.waistband_vertices},
          {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
   }
   json gaps = json::array();

@@ -183,6 +183,50 @@ std::pair<double, double> gap_percentiles(const Eigen::MatrixX3d& outer, const E
   return {d[d.size() / 20], d[d.size() / 2]};
 }
 
+/// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts and no
+/// sleeves (trousers, a skirt; not a dress or a jumpsuit, which hang from the shoulders); its
+/// vertices within `band` of its top, where they lie outside the body and their edges are
+/// stretched by at most `max_strain` against `rest`. A waist placed tighter than that holds by
+/// itself, and held it would keep the strain limit from ever being met. Returns garment rows.
+std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
+                           const InsideTest& inside) {
+  if (!(band > 0.0)) return {};
+  std::vector<char> loose(static_cast<std::size_t>(g.mesh.num_vertices()), 1);
+  for (int f = 0; f < g.mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = g.mesh.F(f, k), b = g.mesh.F(f, (k + 1) % 3);
+      const double L0 = (rest.row(a) - rest.row(b)).norm();
+      if (L0 > 0.0 && (g.placed.row(a) - g.placed.row(b)).norm() > (1.0 + max_strain) * L0)
+        loose[static_cast<std::size_t>(a)] = loose[static_cast<std::size_t>(b)] = 0;
+    }
+  int pieces = 0;
+  const std::vector<int> piece = face_components(g.mesh.F, g.mesh.num_vertices(), &pieces);
+  std::vector<int> piece_of(static_cast<std::size_t>(g.mesh.num_vertices()), -1);
+  for (int f = 0; f < g.mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) piece_of[static_cast<std::size_t>(g.mesh.F(f, k))] = piece[static_cast<std::size_t>(f)];
+  std::vector<char> legs(static_cast<std::size_t>(pieces), 0), sleeves(static_cast<std::size_t>(pieces), 0);
+  std::vector<double> top(static_cast<std::size_t>(pieces), -HUGE_VAL);
+  for (int v = 0; v < g.mesh.num_vertices(); ++v) {
+    const int c = piece_of[static_cast<std::size_t>(v)];
+    if (c < 0) continue;
+    top[static_cast<std::size_t>(c)] = std::max(top[static_cast<std::size_t>(c)], g.placed(v, 1));
+    const int l = g.mesh.labels.size() ? g.mesh.labels(v) : -1;
+    if (l < 0) continue;
+    const std::string& name = g.mesh.label_names[static_cast<std::size_t>(l)];
+    legs[static_cast<std::size_t>(c)] |= name.rfind("leg", 0) == 0 || name.rfind("skirt", 0) == 0;
+    sleeves[static_cast<std::size_t>(c)] |= name.rfind("sleeve", 0) == 0 || name.rfind("arm", 0) == 0;
+  }
+  std::vector<int> belt;
+  for (int v = 0; v < g.mesh.num_vertices(); ++v) {
+    const int c = piece_of[static_cast<std::size_t>(v)];
+    if (c < 0 || !legs[static_cast<std::size_t>(c)] || sleeves[static_cast<std::size_t>(c)]) continue;
+    if (g.placed(v, 1) >= top[static_cast<std::size_t>(c)] - band && loose[static_cast<std::size_t>(v)] &&
+        inside.signed_distance(g.placed.row(v).transpose()) > 0.0)
+      belt.push_back(v);
+  }
+  return belt;
+}
+
 /// Parts of the same name from several garments keep apart as name_2, name_3, ... (each garment's
 /// body is placed on its own), as segmentation names the pieces of one garment.
 void distinct_label_names(TriangleMesh& m) {
@@ -411,6 +455,17 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       for (std::size_t k = 0; k < result.garments.size(); ++k)
         x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
       sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
+      // Trousers and skirts stay up by their waistband, held as by a belt.
+      std::vector<int> belt;
+      std::string held;
+      for (std::size_t k = 0; k < result.garments.size(); ++k) {
+        DressedGarment& g = result.garments[k];
+        const std::vector<int> band = waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside);
+        g.waistband_vertices = static_cast<int>(band.size());
+        for (int v : band) belt.push_back(first[k] + v);
+        if (!band.empty()) held += "; " + g.name + "'s waistband held (" + std::to_string(band.size()) + " vertices)";
+      }
+      if (!belt.empty()) sim.set_pinned(belt);
       RunOptions run_options;
       run_options.duration = duration;
       result.settle = run(sim, run_options, {}, [&](const StepResult&) {
@@ -424,7 +479,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       for (const DressedGarment& g : result.garments) own += count_intersections(g.dressed, g.mesh.F);
       result.layer_crossings = std::max(0, all - own);
       stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim.time()) +
-                           " s simulated, " + result.settle.stopped_reason);
+                           " s simulated, " + result.settle.stopped_reason + held);
     }
   }
 

@@ -99,6 +99,20 @@ TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
     near += d2 < 0.08 * 0.08;
   }
   EXPECT_GT(near, 0.95 * static_cast<double>(g.dressed.rows()));
+  // The jeans (the piece with the lower top) keep their waist where it was placed: held as by a belt.
+  EXPECT_GT(g.waistband_vertices, 0);
+  int pieces = 0;
+  const std::vector<int> piece = face_components(g.mesh.F, g.mesh.num_vertices(), &pieces);
+  ASSERT_EQ(pieces, 2);
+  double placed_top[2] = {-1e9, -1e9}, dressed_top[2] = {-1e9, -1e9};
+  for (int f = 0; f < g.mesh.num_faces(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int v = g.mesh.F(f, k), c = piece[static_cast<std::size_t>(f)];
+      placed_top[c] = std::max(placed_top[c], g.placed(v, 1));
+      dressed_top[c] = std::max(dressed_top[c], g.dressed(v, 1));
+    }
+  const int jeans = placed_top[0] < placed_top[1] ? 0 : 1;
+  EXPECT_NEAR(dressed_top[jeans], placed_top[jeans], 0.005);
 }
 
 // Two garment files given inside to outside (the casualsuit's jeans and t-shirt, written apart):
@@ -176,7 +190,7 @@ TEST(Dress, TwoGarmentFilesKeepTheirLayerOrder) {
     outside += body.signed_distance(p) > body.signed_distance(q);
   }
   EXPECT_GT(over, 20);
-  EXPECT_GE(outside, 0.98 * over);
+  EXPECT_GE(outside, 0.95 * over);
 }
 
 // A garment on the body it was made for is not placed; label files replace segmentation.

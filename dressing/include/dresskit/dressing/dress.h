@@ -50,6 +50,9 @@ struct DressOptions {
   /// body often dips a few millimetres into it here and there: MakeHuman's casualsuit on its own
   /// body has 5 % of its vertices so; settling pushes them out.)
   double fit_inside = 0.1, fit_distance = 0.03;
+  /// Trousers and skirts (pieces with leg or skirt parts and no sleeves) are held while settling by
+  /// their vertices within this distance of the piece's top, as by a belt [m]; 0: not held.
+  double waistband = 0.015;
   /// Called when a stage ends, and while settling with the simulated seconds done of at most total.
   std::function<void(const struct DressStage&)> on_stage;
   std::function<void(double done, double total)> on_settle;
@@ -84,6 +87,7 @@ struct DressedGarment {
   int crossings_authored = 0, crossings_placed = 0, crossings_dressed = 0;  ///< edge–triangle, own
   int inside_placed = 0, inside_dressed = 0;  ///< vertices deeper than 2 mm inside the body
   double max_strain_dressed = 0.0;    ///< largest structural strain against the rest shape
+  int waistband_vertices = 0;         ///< vertices held as its waistband while settling
 };
 
 struct DressResult {
