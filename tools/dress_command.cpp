@@ -35,6 +35,10 @@ void DressCommand::add_to(CLI::App& app) {
   command->add_option("--garment-labels", garment_labels,
                       "part labels of each garment in order (one file: all of them, keyed by file stem)");
   command->add_option("--quality", quality, "fast, balanced or accurate")->capture_default_str();
+  command->add_option("--layers", layers,
+                      "given: worn inside to outside in the order given; inferred: from the garments' kinds "
+                      "(bottoms under tops, the larger outside)")
+      ->capture_default_str();
   command->add_flag("--no-settle", no_settle, "stop after placement (dressed = placed)");
   command->add_flag("--json", as_json, "print the report as JSON on stdout (nothing else)");
   command->add_flag("--segments", segments, "also write segments.ply: every mesh coloured by part");
@@ -143,6 +147,9 @@ int DressCommand::run() {
   DressOptions options;
   options.quality = parse_quality(quality);
   options.settle = !no_settle;
+  if (layers != "given" && layers != "inferred")
+    throw InputError("--layers: '" + layers + "' is not given or inferred");
+  options.infer_layers = layers == "inferred";
   options.on_stage = [&](const DressStage& s) {
     char line[64];
     std::snprintf(line, sizeof line, "%7.2f s", s.seconds);

@@ -9,7 +9,8 @@ namespace dresskit::cli {
 struct DressCommand {
   std::string body;
   std::vector<std::string> garments, fabrics, garment_labels;
-  std::string dir, units, body_units, garment_units, up = "+y", body_labels, quality = "balanced";
+  std::string dir, units, body_units, garment_units, up = "+y", body_labels, quality = "balanced",
+              layers = "given";
   bool no_settle = false, as_json = false, segments = false;
   CLI::App* command = nullptr;
 

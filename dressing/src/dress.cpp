@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <numeric>
 
 #include "dresskit/alignment/part_labels.h"
 #include "dresskit/cloth/fabric.h"
@@ -183,6 +184,17 @@ std::pair<double, double> gap_percentiles(const Eigen::MatrixX3d& outer, const E
   return {d[d.size() / 20], d[d.size() / 2]};
 }
 
+/// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit), as segmentation or
+/// a label file names its parts; otherwise a bottom (trousers, a skirt).
+bool is_top(const DressedGarment& g) {
+  bool legs = false, sleeves = false;
+  for (const std::string& name : g.mesh.label_names) {
+    legs = legs || name.rfind("leg", 0) == 0 || name.rfind("skirt", 0) == 0;
+    sleeves = sleeves || name.rfind("sleeve", 0) == 0 || name.rfind("arm", 0) == 0;
+  }
+  return sleeves || !legs;
+}
+
 /// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts and no
 /// sleeves (trousers, a skirt; not a dress or a jumpsuit, which hang from the shoulders); its
 /// vertices within `band` of its top, where they lie outside the body and their edges are
@@ -346,6 +358,41 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                                                           " meshes cut into parts (the others have label files)");
   }
 
+  // Layers, inside to outside: as given, or inferred from the garments' kinds (bottoms under tops;
+  // of one kind, the larger outside). Before placement, which pushes outer pieces out of inner ones.
+  {
+    Stage stage(result, options, "layers");
+    if (options.infer_layers && result.garments.size() > 1) {
+      std::vector<std::size_t> order(result.garments.size());
+      std::iota(order.begin(), order.end(), 0);
+      std::vector<int> kind(order.size());
+      std::vector<double> area(order.size());
+      for (std::size_t k = 0; k < order.size(); ++k) {
+        kind[k] = is_top(result.garments[k]) ? 1 : 0;
+        area[k] = analyse_topology(result.garments[k].mesh).area;
+      }
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        return kind[a] != kind[b] ? kind[a] < kind[b] : area[a] < area[b];
+      });
+      std::vector<DressedGarment> garments;
+      std::vector<Fabric> ordered_fabrics;
+      for (std::size_t k : order) {
+        garments.push_back(std::move(result.garments[k]));
+        ordered_fabrics.push_back(fabrics[k]);
+      }
+      result.garments = std::move(garments);
+      fabrics = std::move(ordered_fabrics);
+    }
+    for (std::size_t k = 0; k < result.garments.size(); ++k) result.garments[k].layer = static_cast<int>(k);
+    std::string order;
+    for (const DressedGarment& g : result.garments)
+      order += (order.empty() ? "" : " < ") + g.name + (options.infer_layers ? (is_top(g) ? " (top)" : " (bottom)") : "");
+    stage.done(result.garments.size() > 1,
+               result.garments.size() < 2 ? "one garment: no layers to order"
+               : options.infer_layers     ? "inside to outside, inferred from the garments' kinds: " + order
+                                          : "inside to outside as given: " + order);
+  }
+
   // Placement, unless the garment already sits on this body. Garments to place are placed together,
   // as one outfit whose pieces are worn in the order given, so that their parts share one global
   // fit and outer pieces are pushed out of inner ones.
@@ -406,17 +453,6 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       g.inside_placed = surface_fit(g.placed, inside).inside;
     }
     stage.done(!to_place.empty(), report);
-  }
-
-  // Layers: inside to outside as given.
-  {
-    Stage stage(result, options, "layers");
-    for (std::size_t k = 0; k < result.garments.size(); ++k) result.garments[k].layer = static_cast<int>(k);
-    std::string order;
-    for (const DressedGarment& g : result.garments) order += (order.empty() ? "" : " < ") + g.name;
-    stage.done(result.garments.size() > 1,
-               result.garments.size() > 1 ? "inside to outside as given: " + order
-                                          : "one garment: no layers to order");
   }
 
   // Thickness: each cloth's own thickness from its fabric keeps the layers apart.

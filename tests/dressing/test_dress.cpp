@@ -191,6 +191,13 @@ TEST(Dress, TwoGarmentFilesKeepTheirLayerOrder) {
   }
   EXPECT_GT(over, 20);
   EXPECT_GE(outside, 0.95 * over);
+  // Given the other way round with the order inferred: the jeans (a bottom) go under the t-shirt.
+  o.settle = false;
+  o.infer_layers = true;
+  const DressResult inferred = dress(c.body, {{in_units(paths[1], "dm"), ""}, {in_units(paths[0], "dm"), ""}}, o);
+  EXPECT_EQ(inferred.garments[0].name, jeans.name);
+  EXPECT_EQ(inferred.garments[1].name, shirt.name);
+  EXPECT_NE(stage(inferred, "layers").reason.find("inferred"), std::string::npos);
 }
 
 // A garment on the body it was made for is not placed; label files replace segmentation.

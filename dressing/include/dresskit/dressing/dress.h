@@ -1,7 +1,7 @@
 #pragma once
 // The dressing pipeline, the product's main job: a body and garments from files to the garments
 // settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
-// how long: load → clean → units → segmentation → placement → layers → thickness → settle.
+// how long: load → clean → units → segmentation → layers → placement → thickness → settle.
 //
 //   dresskit::MeshFile body{"body.obj"};
 //   dresskit::GarmentFile shirt{{"shirt.obj"}, "gray-interlock"};
@@ -42,6 +42,9 @@ struct GarmentFile {
 struct DressOptions {
   DressQuality quality = DressQuality::balanced;
   bool settle = true;  ///< false: stop after placement (dressed = placed)
+  /// false: the garments are worn inside to outside in the order given; true: the order is
+  /// inferred from their kinds (bottoms under tops; of one kind, the larger surface outside).
+  bool infer_layers = false;
   PlacementOptions placement;
   SegmentationOptions segmentation;
   /// A garment counts as already on the body, and is not placed, when at most this fraction of its
@@ -59,7 +62,7 @@ struct DressOptions {
 };
 
 struct DressStage {
-  std::string name;      ///< load, clean, units, segmentation, placement, layers, thickness, settle
+  std::string name;      ///< load, clean, units, segmentation, layers, placement, thickness, settle
   bool ran = false;
   double seconds = 0.0;  ///< wall-clock
   std::string reason;    ///< what it did, or why it was left out
@@ -94,7 +97,7 @@ struct DressResult {
   TriangleMesh body;  ///< as loaded (and cleaned) [m]; labels = its parts
   std::vector<DressPart> body_parts;
   bool body_labels_from_file = false;
-  std::vector<DressedGarment> garments;  ///< inside to outside
+  std::vector<DressedGarment> garments;  ///< inside to outside (as given unless infer_layers)
   std::vector<DressStage> stages;
   bool settled = false;   ///< the settle stage ran
   RunResult settle;       ///< when it ran

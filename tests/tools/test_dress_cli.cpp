@@ -1,0 +1,77 @@
+// dress-a-mesh dress end to end: the outputs and the report of a run with only the meshes and their
+// units, and bad input (exit 2, one error line naming the file or option, nothing written).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "dresskit/mesh/io.h"
+#include "test_data.h"
+#include "tools/cli_run.h"
+
+using namespace dresskit;
+using namespace dresskit::test::cli;
+
+namespace {
+std::string data(const std::string& path) { return test::data_dir() + "/" + path; }
+int error_lines(const std::string& err) {
+  int n = 0;
+  for (std::size_t at = err.find("dress-a-mesh: "); at != std::string::npos; at = err.find("dress-a-mesh: ", at + 1)) ++n;
+  return n;
+}
+const std::string kChild = "bodies/mh_girl_child_11y.obj", kOutfit = "garments/mh_female_casualsuit01.obj";
+}  // namespace
+
+TEST(DressCli, WritesTheDressedOutfitAndAReportOfEveryStage) {
+  DRESSKIT_REQUIRE_DATA();
+  test::TempDir dir;
+  const CliRun r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --quality fast --json -o " +
+                                dir.file("out"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto report = nlohmann::json::parse(r.out);  // stdout holds the report and nothing else
+  EXPECT_EQ(report, nlohmann::json::parse(slurp(dir.file("out/report.json"))));
+  std::vector<std::string> names;
+  for (const auto& s : report["stages"]) {
+    names.push_back(s["name"]);
+    EXPECT_FALSE(s["reason"].get<std::string>().empty()) << s["name"];
+    EXPECT_GE(s["seconds"].get<double>(), 0.0);
+  }
+  EXPECT_EQ(names, (std::vector<std::string>{"load", "clean", "units", "segmentation", "layers", "placement",
+                                             "thickness", "settle", "write"}));
+  const auto& g = report["garments"][0];
+  EXPECT_EQ(g["vertices_inside_body_2mm"]["dressed"], 0);
+  EXPECT_LE(g["crossings"]["dressed"].get<int>(), g["crossings"]["authored"].get<int>());
+  // The dressed garment in the file's own vertex order and units (dm): as many vertices as the
+  // file, on the child (1.27 m tall, feet at about -6.7 dm in MakeHuman's frame).
+  LoadOptions dm;
+  dm.units = Units::parse("dm");
+  const TriangleMesh source = load_mesh(data(kOutfit), dm);
+  const TriangleMesh dressed = load_mesh(dir.file("out/mh_female_casualsuit01.dressed.obj"), dm);
+  ASSERT_EQ(dressed.num_vertices(), source.num_vertices());
+  EXPECT_TRUE(dressed.V.allFinite());
+  EXPECT_LT(dressed.V.col(1).maxCoeff() - dressed.V.col(1).minCoeff(), 1.2);  // metres after loading as dm
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/mh_female_casualsuit01.placed.obj")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/dressed.glb")));
+}
+
+TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
+  DRESSKIT_REQUIRE_DATA();
+  test::TempDir dir;
+  // A forgotten --units dm: the body would be 12.7 m tall.
+  CliRun r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --garment-units dm -o " + dir.file("a"));
+  EXPECT_EQ(r.code, 2);
+  // The stages that ran print their line; the error is one line of its own, the last.
+  EXPECT_EQ(error_lines(r.err), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("dress-a-mesh: "), r.err.rfind('\n', r.err.size() - 2) + 1) << r.err;
+  EXPECT_NE(r.err.find("mh_girl_child_11y.obj"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--body-units dm"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a")));
+  r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --layers sideways -o " + dir.file("b"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--layers"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("b")));
+  r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --fabric moon-silk -o " + dir.file("c"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("moon-silk"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+}
