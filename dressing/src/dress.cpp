@@ -184,15 +184,16 @@ std::pair<double, double> gap_percentiles(const Eigen::MatrixX3d& outer, const E
   return {d[d.size() / 20], d[d.size() / 2]};
 }
 
-/// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit), as segmentation or
-/// a label file names its parts; otherwise a bottom (trousers, a skirt).
+/// Part names, as segmentation or a label file gives them, of a garment's legs (trouser legs, skirt
+/// parts) and of its sleeves.
+bool names_legs(const std::string& part) { return part.rfind("leg", 0) == 0 || part.rfind("skirt", 0) == 0; }
+bool names_sleeves(const std::string& part) { return part.rfind("sleeve", 0) == 0 || part.rfind("arm", 0) == 0; }
+
+/// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit); otherwise a bottom
+/// (trousers, a skirt).
 bool is_top(const DressedGarment& g) {
-  bool legs = false, sleeves = false;
-  for (const std::string& name : g.mesh.label_names) {
-    legs = legs || name.rfind("leg", 0) == 0 || name.rfind("skirt", 0) == 0;
-    sleeves = sleeves || name.rfind("sleeve", 0) == 0 || name.rfind("arm", 0) == 0;
-  }
-  return sleeves || !legs;
+  const auto& names = g.mesh.label_names;
+  return std::any_of(names.begin(), names.end(), names_sleeves) || std::none_of(names.begin(), names.end(), names_legs);
 }
 
 /// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts and no
@@ -225,8 +226,8 @@ std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest
     const int l = g.mesh.labels.size() ? g.mesh.labels(v) : -1;
     if (l < 0) continue;
     const std::string& name = g.mesh.label_names[static_cast<std::size_t>(l)];
-    legs[static_cast<std::size_t>(c)] |= name.rfind("leg", 0) == 0 || name.rfind("skirt", 0) == 0;
-    sleeves[static_cast<std::size_t>(c)] |= name.rfind("sleeve", 0) == 0 || name.rfind("arm", 0) == 0;
+    legs[static_cast<std::size_t>(c)] |= names_legs(name);
+    sleeves[static_cast<std::size_t>(c)] |= names_sleeves(name);
   }
   std::vector<int> belt;
   for (int v = 0; v < g.mesh.num_vertices(); ++v) {
