@@ -21,12 +21,14 @@
 #include "segment_command.h"
 #include "simulate_command.h"
 #include "align_command.h"
-#include "dress_demo.h"
+#include "demo_command.h"
+#include "mesh_json.h"
 #include "thickness_command.h"
 
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 using namespace dresskit;
+using dresskit::cli::topology_json;
 
 namespace {
 
@@ -45,32 +47,6 @@ struct LoadArgs {
     return load_mesh(path, options);
   }
 };
-
-json topology_json(const TriangleMesh& mesh) {
-  const TopologyReport t = analyse_topology(mesh);
-  const Eigen::AlignedBox3d box = bounding_box(mesh);
-  return {{"vertices", t.num_vertices},
-          {"faces", t.num_faces},
-          {"quads", mesh.quads.rows()},
-          {"edges", t.num_edges},
-          {"bounding_box_m", {{"min", {box.min().x(), box.min().y(), box.min().z()}},
-                              {"max", {box.max().x(), box.max().y(), box.max().z()}}}},
-          {"components", t.num_components},
-          {"boundary_loops", t.num_boundary_loops},
-          {"boundary_edges", t.num_boundary_edges},
-          {"non_manifold_edges", t.num_non_manifold_edges},
-          {"non_manifold_vertices", t.num_non_manifold_vertices},
-          {"isolated_vertices", t.num_isolated_vertices},
-          {"degenerate_faces", t.num_degenerate_faces},
-          {"inconsistent_edges", t.num_inconsistent_edges},
-          {"manifold", t.manifold},
-          {"closed", t.closed},
-          {"consistently_oriented", t.consistently_oriented},
-          {"outward", t.outward},
-          {"area_m2", t.area},
-          {"volume_m3", t.closed ? json(t.signed_volume) : json(nullptr)},
-          {"euler_characteristic", t.euler_characteristic}};
-}
 
 void print_topology(const json& j) {
   const auto& b = j["bounding_box_m"];
@@ -144,90 +120,6 @@ int run_clean(const LoadArgs& args, const std::string& out, const CleanupOptions
   return 0;
 }
 
-int run_demo(const std::string& dir, const MannequinOptions& body_options,
-             const GarmentOptions& garment_options, const cli::DressDemoOptions& dress_options,
-             bool dress) {
-  using Clock = std::chrono::steady_clock;
-  const BodyShape body(body_options);  // checks the options before anything is written
-  check_options(garment_options);
-  if (!(dress_options.seconds >= 0.0))
-    throw InputError("--dress-seconds " + std::to_string(dress_options.seconds) + ": must be 0 or more");
-  std::error_code ec;
-  const bool created_dir = !fs::exists(dir, ec);
-  if (!fs::create_directories(dir, ec) && ec) {
-    throw OutputError(dir + ": cannot create directory: " + ec.message());
-  }
-  json report = {{"scene", "embedded default: procedural mannequin and garments"},
-                 {"units", "m, +Y up, facing +Z"},
-                 {"mannequin_options",
-                  {{"height_m", body_options.height},
-                   {"girth", body_options.girth},
-                   {"pose", body_options.pose == Pose::a_pose ? "a-pose" : "t-pose"},
-                   {"edge_length_m", body_options.edge_length}}},
-                 {"stages_run", dress ? json{"mannequin", "garments", "simulation"}
-                                      : json{"mannequin", "garments"}},
-                 {"stages_not_run",
-                  {{"segmentation", "not needed: the garments are made on this mannequin, by part"},
-                   {"alignment", "not needed: the garments are made in place on this mannequin"}}}};
-  if (!dress) report["stages_not_run"]["simulation"] = "--dress-seconds 0";
-  std::vector<std::string> written;
-  try {
-    auto write = [&](const TriangleMesh& mesh, const std::string& name, double seconds) {
-      for (const char* ext : {"obj", "ply", "glb"}) {
-        const std::string path = (fs::path(dir) / (name + "." + ext)).string();
-        save_mesh(mesh, path);
-        written.push_back(path);
-      }
-      json j = topology_json(mesh);
-      j["seconds"] = seconds;
-      std::vector<int> per_label(mesh.label_names.size(), 0);
-      for (int i = 0; i < mesh.labels.size(); ++i) ++per_label[mesh.labels(i)];
-      for (size_t l = 0; l < per_label.size(); ++l) {
-        if (per_label[l]) j["vertices_per_label"][mesh.label_names[l]] = per_label[l];
-      }
-      report["meshes"][name] = j;
-      std::cout << name << ": " << mesh.num_vertices() << " vertices, " << mesh.num_faces()
-                << " faces, " << j["boundary_loops"] << " boundary loops ("
-                << static_cast<int>(seconds * 1000) << " ms)\n";
-    };
-    auto t0 = Clock::now();
-    const TriangleMesh mannequin = make_mannequin(body);
-    write(mannequin, "mannequin", std::chrono::duration<double>(Clock::now() - t0).count());
-    TriangleMesh trousers;
-    for (GarmentKind kind : all_garment_kinds()) {
-      t0 = Clock::now();
-      TriangleMesh garment = make_garment(body, kind, garment_options);
-      write(garment, to_string(kind), std::chrono::duration<double>(Clock::now() - t0).count());
-      if (kind == GarmentKind::trousers) trousers = std::move(garment);
-    }
-    int code = 0;
-    if (dress) {
-      std::cout << "dressing the mannequin: trousers and t-shirt, " << dress_options.seconds
-                << " s simulated ...\n";
-      cli::DressDemoResult d = cli::dress_demo(mannequin, body, trousers, garment_options, dress_options);
-      write(d.outfit, "outfit", d.report["seconds"].get<double>());
-      write(d.dressed, "dressed", d.report["seconds"].get<double>());
-      report["dressing"] = d.report;
-      std::cout << "  " << d.report["steps"] << " steps in " << d.report["seconds"].get<double>()
-                << " s; max strain " << d.report["max_strain"].get<double>() << ", crossings "
-                << d.report["intersections"]["at_end"] << ", particles inside the body "
-                << d.report["particles_inside_body_at_end"] << " ("
-                << d.report["stopped_reason"].get<std::string>() << ")\n";
-      if (!d.ok) code = 4;  // the last good state is written, as simulate does
-    }
-    const std::string report_path = (fs::path(dir) / "report.json").string();
-    write_file_atomically(report_path, report.dump(2) + "\n");
-    std::cout << "wrote " << written.size() + 1 << " files to " << dir << "\n";
-    return code;
-  } catch (...) {
-    std::error_code ignored;
-    for (const auto& path : written) fs::remove(path, ignored);
-    if (created_dir) fs::remove(dir, ignored);  // only if empty: never anything of the user's
-    throw;
-  }
-  return 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -259,25 +151,8 @@ int main(int argc, char** argv) {
                   "keep only the largest connected component");
   clean->add_flag("--json", clean_json, "print JSON");
 
-  std::string demo_dir;
-  MannequinOptions body_options;
-  GarmentOptions garment_options;
-  std::string pose = "a-pose";
-  auto* demo = app.add_subcommand("demo", "write the embedded default scene: procedural mannequin "
-                                          "and garments (obj, ply, glb), the mannequin dressed in "
-                                          "trousers and t-shirt by the cloth simulator, and report.json");
-  cli::DressDemoOptions dress_options;
-  demo->add_option("--dress-seconds", dress_options.seconds,
-                   "simulated time of the dressing [s] (0: no dressing)")
-      ->capture_default_str();
-  demo->add_option("-o,--output", demo_dir, "output directory")->required();
-  demo->add_option("--height", body_options.height, "mannequin height [m]")->capture_default_str();
-  demo->add_option("--girth", body_options.girth, "mannequin girth scale")->capture_default_str();
-  demo->add_option("--pose", pose, "a-pose or t-pose")->capture_default_str();
-  demo->add_option("--edge", body_options.edge_length, "target edge length [m]")->capture_default_str();
-  demo->add_option("--ease", garment_options.ease, "garment ease over the body [m]")
-      ->capture_default_str();
-
+  cli::DemoCommand demo;
+  demo.add_to(app);
   cli::SimulateCommand simulate;
   simulate.add_to(app);
   cli::DressCommand dress;
@@ -311,12 +186,7 @@ int main(int argc, char** argv) {
     if (*thickness.command) return thickness.run();
     if (*segment.command) return segment.run();
     if (*align.command) return align.run();
-    if (*demo) {
-      body_options.pose = parse_pose(pose);
-      garment_options.edge_length = body_options.edge_length;
-      return run_demo(demo_dir, body_options, garment_options, dress_options,
-                      dress_options.seconds > 0.0);
-    }
+    if (*demo.command) return demo.run();
   } catch (const CLI::ValidationError& e) {
     std::cerr << "dress-a-mesh: " << e.what() << " (see --help)\n";
     return static_cast<int>(ExitCode::usage);

@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "dresskit/dressing/dress.h"
+#include "progress.h"
+
 namespace dresskit::cli {
 
 struct DressCommand {
@@ -21,5 +24,9 @@ struct DressCommand {
   /// up: nothing is written); throws InputError / OutputError like the other commands.
   int run();
 };
+
+/// Prints one line per stage on stderr ("COMMAND: stage  seconds  what it did"), and draws the
+/// progress bar while settling (only on a terminal).
+void show_progress(const std::string& command, DressOptions& options, Progress& progress);
 
 }  // namespace dresskit::cli

@@ -22,6 +22,21 @@
 
 namespace dresskit {
 
+MeshFile MeshFile::file(std::string path, LoadOptions load, std::string labels) {
+  MeshFile f;
+  f.path = std::move(path);
+  f.load = std::move(load);
+  f.labels = std::move(labels);
+  return f;
+}
+
+MeshFile MeshFile::given(std::string name, TriangleMesh mesh) {
+  MeshFile f;
+  f.path = std::move(name);
+  f.mesh = std::move(mesh);
+  return f;
+}
+
 DressQuality parse_quality(const std::string& text) {
   if (text == "fast") return DressQuality::fast;
   if (text == "balanced") return DressQuality::balanced;
@@ -88,13 +103,14 @@ std::string defects(const TriangleMesh& m) {
   return why;
 }
 
-/// Parts from a label file, or by spectral segmentation.
+/// Parts from a label file or given with the mesh, or by spectral segmentation.
 std::vector<DressPart> label(TriangleMesh& m, const MeshFile& f, const SegmentationOptions& options,
                              bool& from_file) {
   std::vector<DressPart> parts;
-  from_file = !f.labels.empty();
+  const bool with_mesh = f.labels.empty() && !m.label_names.empty() && m.labels.size() == m.num_vertices();
+  from_file = !f.labels.empty() || with_mesh;
   if (from_file) {
-    apply_part_labels(m, f.labels, f.labels_key, f.path);
+    if (!with_mesh) apply_part_labels(m, f.labels, f.labels_key, f.path);
     parts.resize(m.label_names.size());
     for (std::size_t k = 0; k < parts.size(); ++k) parts[k].name = m.label_names[k];
     for (Eigen::Index i = 0; i < m.labels.size(); ++i)
@@ -167,21 +183,26 @@ TriangleMesh rest_shape(const DressedGarment& g) {
   return rest;
 }
 
-/// Percentiles (5th, 50th) of the distance from each of `outer`'s points to the triangles of
-/// `inner` [m].
-std::pair<double, double> gap_percentiles(const Eigen::MatrixX3d& outer, const Eigen::MatrixX3d& inner,
-                                          const Eigen::MatrixX3i& inner_faces) {
+/// Where two layers overlap (the outer one's vertices within `overlap` of the inner one), the 5th
+/// and 50th percentiles of the distance from those vertices to the inner one's triangles [m], and
+/// their count.
+struct Gap {
+  double p5 = 0.0, median = 0.0;
+  int vertices = 0;
+};
+Gap layer_gap(const Eigen::MatrixX3d& outer, const Eigen::MatrixX3d& inner, const Eigen::MatrixX3i& inner_faces,
+              double overlap) {
   const TriangleBvh tree(inner, inner_faces);
-  std::vector<double> d(static_cast<std::size_t>(outer.rows()));
+  std::vector<double> d;
   for (Eigen::Index i = 0; i < outer.rows(); ++i) {
     Eigen::Vector3d q;
     double d2 = 0.0;
     tree.closest(outer.row(i).transpose(), &q, &d2);
-    d[static_cast<std::size_t>(i)] = std::sqrt(d2);
+    if (d2 < overlap * overlap) d.push_back(std::sqrt(d2));
   }
-  if (d.empty()) return {0.0, 0.0};
+  if (d.empty()) return {};
   std::sort(d.begin(), d.end());
-  return {d[d.size() / 20], d[d.size() / 2]};
+  return {d[d.size() / 20], d[d.size() / 2], static_cast<int>(d.size())};
 }
 
 /// Part names, as segmentation or a label file gives them, of a garment's legs (trouser legs, skirt
@@ -256,23 +277,36 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                   const DressOptions& options) {
   const auto start = Clock::now();
   DressResult result;
+  result.body_file = body_file;
+  result.body_file.mesh.reset();
+  result.quality = options.quality;
   if (garment_files.empty()) throw InputError("dress: no garment given");
+  if (!(options.settle_seconds >= 0.0 && options.settle_seconds < 1e6))
+    throw InputError("settle seconds: " + number(options.settle_seconds) + " is not between 0 and 1e6");
   std::vector<Fabric> fabrics;
   for (const GarmentFile& g : garment_files) fabrics.push_back(fabric_by_name(g.fabric.empty() ? "gray-interlock" : g.fabric));
 
   // Load.
   {
     Stage stage(result, options, "load");
-    result.body = load_mesh(body_file.path, body_file.load);
+    auto load = [](const MeshFile& f) { return f.mesh ? *f.mesh : load_mesh(f.path, f.load); };
+    result.body = load(body_file);
     for (const GarmentFile& g : garment_files) {
       DressedGarment d;
       d.name = stem(g.file.path);
       d.file = g.file;
+      d.file.mesh.reset();
+      d.in_memory = g.file.mesh.has_value();
       d.fabric = g.fabric.empty() ? "gray-interlock" : g.fabric;
-      d.mesh = load_mesh(g.file.path, g.file.load);
+      d.mesh = load(g.file);
       result.garments.push_back(std::move(d));
     }
-    stage.done(true, std::to_string(1 + garment_files.size()) + " meshes");
+    const int files = !body_file.mesh + static_cast<int>(std::count_if(garment_files.begin(), garment_files.end(),
+                                                                         [](const GarmentFile& g) { return !g.file.mesh; }));
+    const int meshes = 1 + static_cast<int>(garment_files.size());
+    stage.done(files > 0, files == meshes ? std::to_string(meshes) + " meshes"
+                          : files == 0    ? "every mesh given in memory"
+                                          : std::to_string(files) + " of " + std::to_string(meshes) + " meshes from files");
   }
 
   // Clean: only the meshes with defects the later stages cannot take.
@@ -353,10 +387,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       segmented += !g.labels_from_file;
     }
     const int meshes = 1 + static_cast<int>(result.garments.size());
-    stage.done(segmented > 0, segmented == 0        ? "every mesh has a label file"
+    stage.done(segmented > 0, segmented == 0        ? "every mesh has part labels"
                               : segmented == meshes ? "every mesh cut into parts"
                                                     : std::to_string(segmented) + " of " + std::to_string(meshes) +
-                                                          " meshes cut into parts (the others have label files)");
+                                                          " meshes cut into parts (the others have part labels)");
   }
 
   // Layers, inside to outside: as given, or inferred from the garments' kinds (bottoms under tops;
@@ -481,6 +515,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     } else {
       double duration = 1.0;
       SimulationOptions o = simulation_options(options.quality, duration);
+      if (options.settle_seconds > 0.0) duration = options.settle_seconds;
       o.colliders.push_back(Collider::mesh(std::make_shared<const MeshDistance>(result.body)));
       std::vector<ClothModel> models;
       for (std::size_t k = 0; k < result.garments.size(); ++k)
@@ -500,7 +535,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         const std::vector<int> band = waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside);
         g.waistband_vertices = static_cast<int>(band.size());
         for (int v : band) belt.push_back(first[k] + v);
-        if (!band.empty()) held += "; " + g.name + "'s waistband held (" + std::to_string(band.size()) + " vertices)";
+        if (!band.empty()) held += "; waistband of " + g.name + " held (" + std::to_string(band.size()) + " vertices)";
       }
       if (!belt.empty()) sim.set_pinned(belt);
       RunOptions run_options;
@@ -527,9 +562,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     g.max_strain_dressed = max_structural_strain(build_cloth(rest_shape(g), fabrics[k]), g.dressed);
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];
-    const auto [p5, median] = gap_percentiles(g.dressed, inner.dressed, inner.mesh.F);
-    result.layer_gap_p5.push_back(p5);
-    result.layer_gap_median.push_back(median);
+    const Gap gap = layer_gap(g.dressed, inner.dressed, inner.mesh.F, 0.02);
+    result.layer_gap_p5.push_back(gap.p5);
+    result.layer_gap_median.push_back(gap.median);
+    result.layer_gap_vertices.push_back(gap.vertices);
     result.layer_gap_asked.push_back(separation);
   }
   result.seconds = std::chrono::duration<double>(Clock::now() - start).count();

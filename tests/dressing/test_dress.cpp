@@ -24,7 +24,7 @@ std::string body_path(const std::string& name) { return test::data_dir() + "/bod
 std::string outfit_path(const std::string& name) { return test::data_dir() + "/garments/mh_" + name + ".obj"; }
 
 MeshFile in_units(const std::string& path, const char* units) {
-  MeshFile f{path, {}, "", ""};
+  MeshFile f = MeshFile::file(path);
   f.load.units = Units::parse(units);
   return f;
 }

@@ -3,11 +3,12 @@
 // settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
 // how long: load → clean → units → segmentation → layers → placement → thickness → settle.
 //
-//   dresskit::MeshFile body{"body.obj"};
-//   dresskit::GarmentFile shirt{{"shirt.obj"}, "gray-interlock"};
+//   const dresskit::MeshFile body = dresskit::MeshFile::file("body.obj");
+//   const dresskit::GarmentFile shirt{dresskit::MeshFile::file("shirt.obj"), "gray-interlock"};
 //   const dresskit::DressResult r = dresskit::dress(body, {shirt});
 //   // r.garments[0].dressed: the settled shirt [m], in r.garments[0].mesh's vertex order
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,14 @@ struct MeshFile {
   LoadOptions load;        ///< the file's units and up axis
   std::string labels;      ///< part labels (JSON, the layouts of ../shared/data/labels); "" = segment
   std::string labels_key;  ///< the entry in the labels file; "" = the file's stem
+  /// The mesh itself, made in memory rather than read from `path` (which then only names it) [m,
+  /// +Y up]; its labels, when it has named ones, are its parts (no segmentation).
+  std::optional<TriangleMesh> mesh;
+
+  /// A file with its units and up axis.
+  static MeshFile file(std::string path, LoadOptions load = {}, std::string labels = "");
+  /// A mesh made in memory, called `name` in messages and outputs.
+  static MeshFile given(std::string name, TriangleMesh mesh);
 };
 
 struct GarmentFile {
@@ -42,6 +51,8 @@ struct GarmentFile {
 struct DressOptions {
   DressQuality quality = DressQuality::balanced;
   bool settle = true;  ///< false: stop after placement (dressed = placed)
+  /// Simulated time settling takes at most [s]; 0 = the quality's (0.5, 1 or 2 s).
+  double settle_seconds = 0.0;
   /// false: the garments are worn inside to outside in the order given; true: the order is
   /// inferred from their kinds (bottoms under tops; of one kind, the larger surface outside).
   bool infer_layers = false;
@@ -78,10 +89,11 @@ struct DressPart {
 struct DressedGarment {
   std::string name;    ///< the file's stem
   std::string fabric;
-  MeshFile file;
+  MeshFile file;       ///< as given (without its in-memory mesh)
+  bool in_memory = false;  ///< given in memory rather than read from file.path
   TriangleMesh mesh;   ///< as loaded (and cleaned) [m]: its rest shape; labels = its parts
   std::vector<DressPart> parts;
-  bool labels_from_file = false;
+  bool labels_from_file = false;      ///< from a label file or given with the mesh
   bool placed_by_placement = false;   ///< false: it already sat on the body
   PlacementResult placement;          ///< when placed_by_placement
   Eigen::MatrixX3d placed, dressed;   ///< [m], in mesh's vertex order
@@ -94,6 +106,8 @@ struct DressedGarment {
 };
 
 struct DressResult {
+  MeshFile body_file;  ///< as given (without its in-memory mesh)
+  DressQuality quality = DressQuality::balanced;
   TriangleMesh body;  ///< as loaded (and cleaned) [m]; labels = its parts
   std::vector<DressPart> body_parts;
   bool body_labels_from_file = false;
@@ -102,9 +116,11 @@ struct DressResult {
   bool settled = false;   ///< the settle stage ran
   RunResult settle;       ///< when it ran
   /// Edge–triangle crossings between different garments at the end (0 = the layers kept apart),
-  /// and the gap between consecutive layers: the nearest distance from each vertex of the outer
-  /// garment to the inner one, 5th percentile and median, against the thickness asked for [m].
+  /// and the gap between consecutive layers where they overlap: of the outer garment's vertices
+  /// within 2 cm of the inner one, their count and the 5th percentile and median of their distance
+  /// to it, against the thickness asked for [m].
   int layer_crossings = 0;
+  std::vector<int> layer_gap_vertices;
   std::vector<double> layer_gap_p5, layer_gap_median, layer_gap_asked;
   double seconds = 0.0;  ///< the whole run, wall-clock
 };

@@ -1,0 +1,28 @@
+#pragma once
+// The dressing pipeline's output stage: the dressed result as files and a report (docs/dressing.md,
+// docs/formats.md).
+//
+//   const dresskit::DressResult r = dresskit::dress(body, garments);
+//   const std::string report = dresskit::write_dress_outputs("out", r);
+#include <string>
+
+#include "dresskit/dressing/dress.h"
+
+namespace dresskit {
+
+struct DressOutputOptions {
+  bool segments = false;  ///< also segments.ply: every mesh coloured by part
+  /// Members added to report.json (the text of a JSON object, "" = none): what a caller knows
+  /// about the run beyond the pipeline, such as how its meshes were made.
+  std::string report_extra;
+};
+
+/// Writes into `folder` (which must exist): report.json; dressed.glb (the body and each garment as
+/// named nodes); for every garment <name>.placed.obj and <name>.dressed.obj, in its file's own
+/// vertex order, units and axes (a garment given in memory: in its own order, in m). report.json's
+/// stages end with `write`, and its `seconds` is the whole run's. Returns report.json's text.
+/// Throws OutputError naming the file that cannot be written, InputError for a bad report_extra.
+std::string write_dress_outputs(const std::string& folder, const DressResult& result,
+                                const DressOutputOptions& options = {});
+
+}  // namespace dresskit

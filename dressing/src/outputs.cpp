@@ -1,0 +1,181 @@
+#include "dresskit/dressing/outputs.h"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <filesystem>
+
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+
+namespace dresskit {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+namespace {
+
+/// Positions in the file's own vertex order, units and axes: the mesh's rows mapped back through
+/// source_vertex (a vertex the toolkit dropped keeps the file's position), faces likewise. A mesh
+/// given in memory keeps its own order and metres.
+TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
+  TriangleMesh result;
+  if (g.in_memory) {
+    result.V = V;
+    result.F = g.mesh.F;
+    return result;
+  }
+  const TriangleMesh& mesh = g.mesh;
+  const TriangleMesh original = load_mesh(g.file.path, g.file.load);
+  int count = original.num_vertices();
+  for (Eigen::Index i = 0; i < mesh.source_vertex.size(); ++i) count = std::max(count, mesh.source_vertex(i) + 1);
+  Eigen::MatrixX3d out = Eigen::MatrixX3d::Zero(count, 3);
+  std::vector<int> to_file(static_cast<std::size_t>(mesh.num_vertices()));
+  for (int i = 0; i < original.num_vertices(); ++i) {
+    const int s = original.source_vertex.size() ? original.source_vertex(i) : i;
+    if (s >= 0 && s < count) out.row(s) = original.V.row(i);
+  }
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    const int s = mesh.source_vertex.size() ? mesh.source_vertex(i) : i;
+    to_file[static_cast<std::size_t>(i)] = s;
+    if (s >= 0 && s < count) out.row(s) = V.row(i);
+  }
+  result.V = to_file_frame(out, g.file.load);
+  result.F.resize(mesh.num_faces(), 3);
+  int kept = 0;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    Eigen::Vector3i face;
+    bool ok = true;
+    for (int k = 0; k < 3; ++k) {
+      face(k) = to_file[static_cast<std::size_t>(mesh.F(f, k))];
+      ok = ok && face(k) >= 0;
+    }
+    if (ok) result.F.row(kept++) = face.transpose();
+  }
+  result.F.conservativeResize(kept, 3);
+  return result;
+}
+
+json parts_json(const std::vector<DressPart>& parts) {
+  json out = json::array();
+  for (const DressPart& p : parts) out.push_back({{"name", p.name}, {"confidence", p.confidence}, {"vertices", p.vertices}});
+  return out;
+}
+
+json placement_json(const DressedGarment& g) {
+  json out = {{"ran", g.placed_by_placement}};
+  if (!g.placed_by_placement) return out;
+  const PlacementResult& p = g.placement;
+  out["global_scale"] = p.global_scale;
+  out["global_method"] = p.global_method;
+  json matches = json::array();
+  for (const PartMatch& m : p.matching.matches)
+    matches.push_back({{"garment_part", m.garment_part}, {"body_part", m.body_part}, {"confidence", m.confidence}, {"by", m.by}});
+  out["matches"] = matches;
+  out["unmatched_garment_parts"] = p.matching.unmatched_garment_parts;
+  json parts = json::array();
+  for (const PartPlacement& q : p.parts) {
+    json e = {{"garment_part", q.garment_part}, {"body_part", q.body_part}, {"vertices", q.vertices},
+              {"used_icp", q.used_icp}, {"fitness", q.icp.fitness}, {"rmse_m", q.icp.rmse}};
+    if (!q.note.empty()) e["note"] = q.note;
+    parts.push_back(e);
+  }
+  out["parts"] = parts;
+  out["pushed_out_vertices"] = p.pushed_out;
+  out["seconds"] = p.seconds;
+  return out;
+}
+
+const char* labels_source(bool given, const MeshFile& file) {
+  return !given ? "segmentation" : file.labels.empty() ? "given with the mesh" : "file";
+}
+
+json report_json(const DressResult& r) {
+  json garments = json::array();
+  for (const DressedGarment& g : r.garments) {
+    garments.push_back(
+        {{"name", g.name},
+         {"path", g.in_memory ? json(nullptr) : json(g.file.path)},
+         {"units", g.in_memory ? "m" : g.file.load.units.name},
+         {"fabric", g.fabric},
+         {"vertices", g.mesh.num_vertices()},
+         {"labels", labels_source(g.labels_from_file, g.file)},
+         {"parts", parts_json(g.parts)},
+         {"placement", placement_json(g)},
+         {"layer", g.layer},
+         {"thickness_mm", 1e3 * g.thickness},
+         {"crossings", {{"authored", g.crossings_authored}, {"placed", g.crossings_placed}, {"dressed", g.crossings_dressed}}},
+         {"vertices_inside_body_2mm", {{"placed", g.inside_placed}, {"dressed", g.inside_dressed}}},
+         {"max_strain", g.max_strain_dressed},
+         {"waistband_vertices", g.waistband_vertices},
+         {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
+  }
+  json gaps = json::array();
+  for (std::size_t k = 0; k < r.layer_gap_median.size(); ++k)
+    gaps.push_back({{"inner", r.garments[k].name}, {"outer", r.garments[k + 1].name},
+                    {"overlapping_vertices", r.layer_gap_vertices[k]}, {"p5_mm", 1e3 * r.layer_gap_p5[k]},
+                    {"median_mm", 1e3 * r.layer_gap_median[k]},
+                    {"asked_mm", 1e3 * r.layer_gap_asked[k]}});
+  json report = {
+      {"body", {{"path", r.body_file.path}, {"units", r.body_file.load.units.name},
+                {"vertices", r.body.num_vertices()},
+                {"height_m", r.body.V.col(1).maxCoeff() - r.body.V.col(1).minCoeff()},
+                {"labels", labels_source(r.body_labels_from_file, r.body_file)},
+                {"parts", parts_json(r.body_parts)}}},
+      {"garments", garments},
+      {"quality", to_string(r.quality)},
+      {"layers", {{"count", r.garments.size()}, {"crossings_between", r.layer_crossings}, {"gaps", gaps}}}};
+  if (r.settled) {
+    report["settle"] = {{"stopped_reason", r.settle.stopped_reason},
+                        {"steps", r.settle.totals.steps},
+                        {"step_retries", r.settle.totals.retries},
+                        {"smallest_dt", r.settle.totals.smallest_dt},
+                        {"at_rest_from_seconds", r.settle.rest_at >= 0.0 ? json(r.settle.rest_at) : json(nullptr)},
+                        {"mean_speed_at_end", r.settle.mean_speed}};
+  }
+  return report;
+}
+
+}  // namespace
+
+std::string write_dress_outputs(const std::string& folder, const DressResult& r, const DressOutputOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  json report = report_json(r);
+  if (!options.report_extra.empty()) {
+    const json extra = json::parse(options.report_extra, nullptr, false);
+    if (!extra.is_object()) throw InputError("report extra: not the text of a JSON object");
+    report.update(extra);
+  }
+  const fs::path dir(folder);
+  for (const DressedGarment& g : r.garments) {
+    save_mesh(in_file_order(g, g.placed), (dir / (g.name + ".placed.obj")).string());
+    save_mesh(in_file_order(g, g.dressed), (dir / (g.name + ".dressed.obj")).string());
+  }
+  std::vector<NamedMesh> scene;
+  scene.push_back({"body", r.body});
+  for (const DressedGarment& g : r.garments) {
+    TriangleMesh dressed = g.mesh;
+    dressed.V = g.dressed;
+    scene.push_back({g.name, dressed});
+  }
+  save_scene(scene, (dir / "dressed.glb").string());
+  if (options.segments) {
+    TriangleMesh all = empty_mesh();
+    append_mesh(all, r.body, "body_");
+    for (const DressedGarment& g : r.garments) append_mesh(all, g.mesh, g.name + "_");
+    save_mesh(all, (dir / "segments.ply").string());
+  }
+  json stages = json::array();
+  for (const DressStage& s : r.stages)
+    stages.push_back({{"name", s.name}, {"ran", s.ran}, {"seconds", s.seconds}, {"reason", s.reason}});
+  const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  stages.push_back({{"name", "write"}, {"ran", true}, {"seconds", seconds},
+                    {"reason", std::to_string(2 * r.garments.size() + 1 + options.segments) + " files and the report"}});
+  report["stages"] = stages;
+  report["seconds"] = r.seconds + seconds;
+  const std::string text = report.dump(2) + "\n";
+  write_file_atomically((dir / "report.json").string(), text);
+  return text;
+}
+
+}  // namespace dresskit

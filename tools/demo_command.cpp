@@ -1,0 +1,105 @@
+#include "demo_command.h"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <iostream>
+
+#include "dress_command.h"
+#include "dresskit/dressing/outputs.h"
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+#include "mesh_json.h"
+#include "output_folder.h"
+
+namespace dresskit::cli {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+void DemoCommand::add_to(CLI::App& app) {
+  command = app.add_subcommand("demo", "the embedded default scene: a procedural mannequin and garments made on "
+                                       "it (obj, ply, glb), the mannequin dressed in trousers and a t-shirt by "
+                                       "the dressing pipeline (report.json, dressed.glb)");
+  command->add_option("-o,--output", dir, "output directory")->required();
+  command->add_option("--dress-seconds", seconds, "simulated settling [s] (0: placed, not settled)")
+      ->capture_default_str();
+  command->add_option("--quality", quality, "fast, balanced or accurate")->capture_default_str();
+  command->add_option("--height", body.height, "mannequin height [m]")->capture_default_str();
+  command->add_option("--girth", body.girth, "mannequin girth scale")->capture_default_str();
+  command->add_option("--pose", pose, "a-pose or t-pose")->capture_default_str();
+  command->add_option("--edge", body.edge_length, "target edge length [m]")->capture_default_str();
+  command->add_option("--ease", garments.ease, "garment ease over the body [m]")->capture_default_str();
+}
+
+int DemoCommand::run() {
+  body.pose = parse_pose(pose);
+  garments.edge_length = body.edge_length;
+  const BodyShape shape(body);  // checks the options before anything is made
+  check_options(garments);
+  GarmentOptions over = garments;
+  over.ease += over_ease;
+  check_options(over);
+  if (!(seconds >= 0.0 && seconds <= 60.0))
+    throw InputError("--dress-seconds " + std::to_string(seconds) + ": must be between 0 and 60");
+  DressOptions options;
+  options.quality = parse_quality(quality);
+  options.settle = seconds > 0.0;
+  options.settle_seconds = seconds;
+
+  // The scene: every garment kind made on the mannequin; the t-shirt with a little more ease, as it
+  // is worn over the trousers.
+  std::vector<NamedMesh> made;
+  made.push_back({"mannequin", make_mannequin(shape)});
+  for (GarmentKind kind : all_garment_kinds())
+    made.push_back({to_string(kind), make_garment(shape, kind, kind == GarmentKind::tshirt ? over : garments)});
+  auto mesh_named = [&](const std::string& name) {
+    for (const NamedMesh& m : made)
+      if (m.name == name) return m.mesh;
+    throw std::logic_error("demo: no mesh " + name);
+  };
+  json meshes;
+  for (const NamedMesh& m : made) {
+    meshes[m.name] = topology_json(m.mesh);
+    std::cout << m.name << ": " << m.mesh.num_vertices() << " vertices, " << m.mesh.num_faces() << " faces, "
+              << meshes[m.name]["boundary_loops"] << " boundary loops\n";
+  }
+
+  // Dressed by the pipeline, as any user's meshes: the parts come with the meshes (no segmentation)
+  // and the garments are made on this body (no placement).
+  const MeshFile mannequin = MeshFile::given("mannequin", mesh_named("mannequin"));
+  const std::vector<GarmentFile> outfit = {{MeshFile::given("trousers", mesh_named("trousers")), "11oz-black-denim"},
+                                           {MeshFile::given("tshirt", mesh_named("tshirt")), "gray-interlock"}};
+  Progress progress("settle", seconds, "s simulated");
+  show_progress("demo", options, progress);
+  const DressResult r = dress(mannequin, outfit, options);
+  progress.finish();
+  if (r.settled && !r.settle.ok) {
+    std::cerr << "dress-a-mesh: demo: settling stopped: " << r.settle.failure << " (nothing written)\n";
+    return static_cast<int>(ExitCode::simulation_failed);
+  }
+
+  const json scene = {{"scene", "embedded default: procedural mannequin and garments made on it"},
+                      {"mannequin_options",
+                       {{"height_m", body.height},
+                        {"girth", body.girth},
+                        {"pose", body.pose == Pose::a_pose ? "a-pose" : "t-pose"},
+                        {"edge_length_m", body.edge_length}}},
+                      {"garment_options", {{"ease_m", garments.ease}, {"tshirt_ease_m", over.ease}}},
+                      {"meshes", meshes}};
+  write_folder(dir, [&](const fs::path& folder) {
+    for (const NamedMesh& m : made)
+      for (const char* ext : {"obj", "ply", "glb"}) save_mesh(m.mesh, (folder / (m.name + "." + ext)).string());
+    DressOutputOptions o;
+    o.report_extra = scene.dump();
+    write_dress_outputs(folder.string(), r, o);
+  });
+  for (const DressedGarment& g : r.garments) {
+    std::cout << g.name << " (" << g.fabric << "): " << g.crossings_dressed << " crossings, " << g.inside_dressed
+              << " vertices inside the body, largest strain " << g.max_strain_dressed << "\n";
+  }
+  std::cout << "layers: " << r.layer_crossings << " crossings between them\n"
+            << "wrote " << dir << " in " << r.seconds << " s\n";
+  return 0;
+}
+
+}  // namespace dresskit::cli

@@ -1,0 +1,34 @@
+#include "mesh_json.h"
+
+#include "dresskit/mesh/topology.h"
+
+namespace dresskit::cli {
+using json = nlohmann::json;
+
+json topology_json(const TriangleMesh& mesh) {
+  const TopologyReport t = analyse_topology(mesh);
+  const Eigen::AlignedBox3d box = bounding_box(mesh);
+  return {{"vertices", t.num_vertices},
+          {"faces", t.num_faces},
+          {"quads", mesh.quads.rows()},
+          {"edges", t.num_edges},
+          {"bounding_box_m", {{"min", {box.min().x(), box.min().y(), box.min().z()}},
+                              {"max", {box.max().x(), box.max().y(), box.max().z()}}}},
+          {"components", t.num_components},
+          {"boundary_loops", t.num_boundary_loops},
+          {"boundary_edges", t.num_boundary_edges},
+          {"non_manifold_edges", t.num_non_manifold_edges},
+          {"non_manifold_vertices", t.num_non_manifold_vertices},
+          {"isolated_vertices", t.num_isolated_vertices},
+          {"degenerate_faces", t.num_degenerate_faces},
+          {"inconsistent_edges", t.num_inconsistent_edges},
+          {"manifold", t.manifold},
+          {"closed", t.closed},
+          {"consistently_oriented", t.consistently_oriented},
+          {"outward", t.outward},
+          {"area_m2", t.area},
+          {"volume_m3", t.closed ? json(t.signed_volume) : json(nullptr)},
+          {"euler_characteristic", t.euler_characteristic}};
+}
+
+}  // namespace dresskit::cli
