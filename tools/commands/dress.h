@@ -1,28 +1,27 @@
 #pragma once
 // `dress-a-mesh dress`: dresses a body in garments from files (docs/cli.md, docs/dressing.md).
-#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
+#include "commands/command.h"
+#include "common/progress.h"
 #include "dresskit/dressing/dress.h"
-#include "progress.h"
 
 namespace dresskit::cli {
 
-struct DressCommand {
+struct DressCommand : Command {
   std::string body;
   std::vector<std::string> garments, fabrics, garment_labels;
   std::string dir, units, body_units, garment_units, up = "+y", body_labels, quality = "balanced",
               layers = "given";
   bool no_settle = false, as_json = false, segments = false;
-  CLI::App* command = nullptr;
 
-  void add_to(CLI::App& app);
+  void add_to(CLI::App& app) override;
   /// Writes DIR/report.json, DIR/dressed.glb and per garment DIR/<stem>.placed.obj and
   /// DIR/<stem>.dressed.obj (with --segments also DIR/segments.ply), all together once the run
   /// succeeded; prints one line per stage on stderr. Returns the exit code (4 when settling blew
   /// up: nothing is written); throws InputError / OutputError like the other commands.
-  int run();
+  int run() override;
 };
 
 /// Prints one line per stage on stderr ("COMMAND: stage  seconds  what it did"), and draws the

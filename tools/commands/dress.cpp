@@ -1,4 +1,4 @@
-#include "dress_command.h"
+#include "commands/dress.h"
 
 #include <nlohmann/json.hpp>
 
@@ -11,8 +11,8 @@
 #include "dresskit/dressing/outputs.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
-#include "output_folder.h"
-#include "progress.h"
+#include "common/output_folder.h"
+#include "common/progress.h"
 
 namespace dresskit::cli {
 namespace fs = std::filesystem;

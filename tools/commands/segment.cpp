@@ -1,4 +1,4 @@
-#include "segment_command.h"
+#include "commands/segment.h"
 
 #include <algorithm>
 #include <cctype>
@@ -10,7 +10,7 @@
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
-#include "output_folder.h"
+#include "common/output_folder.h"
 
 namespace dresskit::cli {
 namespace {

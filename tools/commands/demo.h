@@ -1,28 +1,28 @@
 #pragma once
 // `dress-a-mesh demo`: the embedded default scene, a procedural mannequin and garments made on it,
 // dressed by the dressing pipeline like any user's meshes (docs/cli.md).
-#include <CLI/CLI.hpp>
 #include <string>
+
+#include "commands/command.h"
 
 #include "dresskit/scene/garments.h"
 #include "dresskit/scene/mannequin.h"
 
 namespace dresskit::cli {
 
-struct DemoCommand {
+struct DemoCommand : Command {
   std::string dir, pose = "a-pose", quality = "balanced";
   MannequinOptions body;
   GarmentOptions garments;
   double seconds = 1.0;      ///< simulated settling [s]; 0: not settled
   double over_ease = 0.008;  ///< the t-shirt's ease beyond the trousers', so that they start apart [m]
-  CLI::App* command = nullptr;
 
-  void add_to(CLI::App& app);
+  void add_to(CLI::App& app) override;
   /// Writes into DIR the mannequin and the garments made on it (obj, ply, glb), and the dressing
   /// pipeline's outputs for the mannequin in trousers (11oz-black-denim) under a t-shirt
   /// (gray-interlock): report.json, dressed.glb, <garment>.placed.obj, <garment>.dressed.obj, all
   /// together once the run succeeded. Returns the exit code (4: settling blew up, nothing written).
-  int run();
+  int run() override;
 };
 
 }  // namespace dresskit::cli

@@ -1,4 +1,4 @@
-#include "align_command.h"
+#include "commands/align.h"
 
 #include <cmath>
 #include <filesystem>

@@ -1,4 +1,4 @@
-#include "thickness_command.h"
+#include "commands/thickness.h"
 
 #include <nlohmann/json.hpp>
 

@@ -1,16 +1,16 @@
-#include "demo_command.h"
+#include "commands/demo.h"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <iostream>
 
-#include "dress_command.h"
+#include "commands/dress.h"
 #include "dresskit/dressing/outputs.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
-#include "mesh_json.h"
-#include "output_folder.h"
+#include "common/mesh.h"
+#include "common/output_folder.h"
 
 namespace dresskit::cli {
 namespace fs = std::filesystem;

@@ -1,9 +1,23 @@
-#include "mesh_json.h"
+#include "common/mesh.h"
 
+#include "dresskit/mesh/io.h"
 #include "dresskit/mesh/topology.h"
 
 namespace dresskit::cli {
 using json = nlohmann::json;
+
+void MeshArgument::add_to(CLI::App* command) {
+  command->add_option("MESH", path, "input mesh (obj, ply, off, stl, gltf, glb, fbx)")->required();
+  command->add_option("--units", units, "source length unit: m, dm, cm, mm or metres per unit")->capture_default_str();
+  command->add_option("--up", up, "source up axis: +x, -x, +y, -y, +z, -z")->capture_default_str();
+}
+
+TriangleMesh MeshArgument::load() const {
+  LoadOptions options;
+  options.units = Units::parse(units);
+  options.up = parse_up_axis(up);
+  return load_mesh(path, options);
+}
 
 json topology_json(const TriangleMesh& mesh) {
   const TopologyReport t = analyse_topology(mesh);

@@ -1,4 +1,4 @@
-#include "simulate_command.h"
+#include "commands/simulate.h"
 
 #include <nlohmann/json.hpp>
 
@@ -15,7 +15,7 @@
 #include "dresskit/cloth/seams.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
-#include "progress.h"
+#include "common/progress.h"
 
 namespace dresskit::cli {
 namespace fs = std::filesystem;

@@ -1,0 +1,66 @@
+#include "commands/clean.h"
+
+#include <filesystem>
+#include <iostream>
+
+#include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/io.h"
+#include "dresskit/mesh/topology.h"
+
+namespace dresskit::cli {
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+void CleanCommand::add_to(CLI::App& app) {
+  command = app.add_subcommand("clean", "repair a mesh and write it; prints what it fixed");
+  mesh.add_to(command);
+  command->add_option("-o,--output", output, "output mesh (obj, ply, off, stl, glb, gltf, fbx)")->required();
+  command->add_option("--remesh", options.remesh_edge_length,
+                      "isotropic remeshing to this edge length [m, after unit conversion]")
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--fill-holes", options.fill_holes, "fill small holes");
+  command->add_option("--max-hole-edges", options.max_hole_edges, "largest hole to fill [boundary edges]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+  command->add_flag("--largest-component", options.keep_largest_component,
+                    "keep only the largest connected component");
+  command->add_flag("--json", as_json, "print JSON");
+}
+
+namespace {
+// Refuses an output path that is the input, or whose extension cannot be written.
+void check_output(const std::string& out, const std::string& input) {
+  std::error_code ec;
+  if (fs::exists(out, ec) && fs::equivalent(out, input, ec)) throw InputError(out + ": refusing to overwrite the input");
+  if (!is_saveable(out)) {
+    std::string list;
+    for (const auto& e : saveable_extensions()) list += (list.empty() ? "" : ", ") + e;
+    throw InputError(out + ": cannot write '" + fs::path(out).extension().string() + "' files (supported: " + list + ")");
+  }
+  const fs::path dir = fs::path(out).parent_path();
+  if (!dir.empty() && !fs::is_directory(dir, ec)) throw OutputError(out + ": no such directory");
+}
+}  // namespace
+
+int CleanCommand::run() {
+  check_output(output, mesh.path);
+  const CleanupResult r = cleanup_mesh(mesh.load(), options);
+  validate_mesh(r.mesh, mesh.path + " after cleanup");  // never write an empty or broken result
+  save_mesh(r.mesh, output);
+  if (as_json) {
+    const json j = {{"input", mesh.path}, {"output", output}, {"changes", r.changes()}, {"result", topology_json(r.mesh)}};
+    std::cout << j.dump(2) << "\n";
+    return 0;
+  }
+  std::cout << "cleaned " << mesh.path << " -> " << output << "\n";
+  if (r.changes().empty()) std::cout << "  nothing to fix\n";
+  for (const auto& line : r.changes()) std::cout << "  " << line << "\n";
+  const TopologyReport t = analyse_topology(r.mesh);
+  std::cout << "  result: " << t.num_vertices << " vertices, " << t.num_faces << " faces, " << t.num_components
+            << " components, " << t.num_boundary_loops << " boundary loops, "
+            << (t.manifold ? "manifold" : "NOT manifold") << ", "
+            << (t.closed ? (t.outward ? "closed and outward" : "closed") : "open") << "\n";
+  return 0;
+}
+
+}  // namespace dresskit::cli
