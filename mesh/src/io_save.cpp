@@ -287,7 +287,7 @@ void save_scene(const std::vector<NamedMesh>& meshes, const std::string& path) {
     if (!m.mesh.V.allFinite()) throw OutputError(path + ": refusing to write a non-finite coordinate (" + m.name + ")");
   const std::string ext = detail::lower_extension(path);
   // ASCII FBX: the binary FBX exporter of assimp 5.2 writes files that its own reader rejects
-  // ("FBX-Tokenize block offset is out of range"; assimp issue #4686).
+  // ("FBX-Tokenize block offset is out of range"; assimp GitHub #4686).
   const char* format = ext == "glb" ? "glb2" : ext == "gltf" ? "gltf2" : ext == "fbx" ? "fbxa" : nullptr;
   if (!format) throw OutputError(path + ": cannot save a scene of meshes as '." + ext + "' (supported: glb, gltf, fbx)");
   write_via_temporary(path, [&](const std::string& tmp) { write_with_assimp(meshes, tmp, format); });
