@@ -642,6 +642,20 @@ int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
   return crossings;
 }
 
+std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F) {
+  std::vector<char> in(static_cast<std::size_t>(x.rows()), 0);
+  if (F.rows() > 0) {
+    const EdgeList edges = triangle_edges(F);
+    for_each_crossing(x, F, representatives({}, static_cast<int>(x.rows())), edges, [&](int e, int f) {
+      for (int p : {edges.i[e], edges.j[e], F(f, 0), F(f, 1), F(f, 2)}) in[static_cast<std::size_t>(p)] = 1;
+    });
+  }
+  std::vector<int> out;
+  for (std::size_t p = 0; p < in.size(); ++p)
+    if (in[p]) out.push_back(static_cast<int>(p));
+  return out;
+}
+
 void SelfCollision::find_tangles(const Eigen::MatrixX3d& x0) {
   tangled_.assign(static_cast<std::size_t>(x0.rows()), 0);
   tangled_count_ = 0;

@@ -14,6 +14,7 @@
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/triangle_bvh.h"
+#include "dresskit/mesh/arap.h"
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/inside.h"
@@ -203,6 +204,81 @@ Gap layer_gap(const Eigen::MatrixX3d& outer, const Eigen::MatrixX3d& inner, cons
   if (d.empty()) return {};
   std::sort(d.begin(), d.end());
   return {d[d.size() / 20], d[d.size() / 2], static_cast<int>(d.size())};
+}
+
+/// Weight of a vertex held at a position in an as-rigid-as-possible fit (arap_fit): moving it one
+/// mean edge costs as much as stretching 100 edges by 100 %.
+constexpr double kHeld = 100.0;
+
+/// An as-rigid-as-possible fit of a garment's rest shape to its placed positions, vertices of
+/// weight 0 free, the others held, that stays out of the body: with `push`, free vertices the fit
+/// takes into the body are first held `clearance` outside it along its normal; then any still
+/// inside are held where placement put them (outside it). Returns the positions and how many
+/// vertices lie deeper than 5 mm inside the body.
+std::pair<Eigen::MatrixX3d, int> fit_outside(const DressedGarment& g, const Eigen::MatrixX3d& rest, Eigen::VectorXd weight,
+                                             const MeshDistance& body, double clearance, bool push) {
+  Eigen::MatrixX3d target = g.placed;
+  Eigen::MatrixX3d x = arap_fit(rest, g.mesh.F, target, weight);
+  auto depth = [&](Eigen::Index v) {
+    Eigen::Vector3d n;
+    const double d = body.distance(x.row(v).transpose(), &n);
+    return std::make_pair(clearance - d, n);
+  };
+  for (int round = 0, pushes = push ? 8 : 0; round < pushes + 4; ++round) {
+    const bool pushing = round < pushes;
+    int moved = 0;
+    for (Eigen::Index v = 0; v < x.rows(); ++v) {
+      const auto [under, n] = depth(v);
+      if (under <= 0.0 || weight(v) >= kHeld) continue;
+      target.row(v) = pushing ? Eigen::RowVector3d(x.row(v) + under * n.transpose()) : g.placed.row(v);
+      weight(v) = pushing ? 1.0 : kHeld;
+      ++moved;
+    }
+    if (moved > 0) x = arap_fit(rest, g.mesh.F, target, weight);
+    else if (pushing) round = pushes - 1;  // nothing inside: on to the holding rounds
+    else break;
+  }
+  int deep = 0;
+  for (Eigen::Index v = 0; v < x.rows(); ++v) deep += depth(v).first > clearance + 0.005;
+  return {x, deep};
+}
+
+/// Where placement made a garment cross itself (bending parts apart and together by their own
+/// transforms), the crossing regions are rebuilt from the garment's rest shape, which keeps their
+/// edges' lengths: the vertices of each crossing and their neighbours `rings` deep are left free
+/// in fit_outside (with and without pushing), the rest held. Wider regions in turn until the
+/// garment crosses itself no more than as authored or two widths in a row do not help; a fit is
+/// kept only where it lowers the crossings and takes no vertex deep into the body.
+void untangle(DressedGarment& g, const MeshDistance& body, double clearance) {
+  const Eigen::MatrixX3d rest = rest_shape(g).V;
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(g.mesh.F, g.mesh.num_vertices());
+  int fruitless = 0;
+  for (int rings : {2, 4, 8, 12}) {
+    Eigen::VectorXd weight = Eigen::VectorXd::Constant(g.mesh.num_vertices(), kHeld);
+    std::vector<int> free = crossing_vertices(g.placed, g.mesh.F);
+    for (int v : free) weight(v) = 0.0;
+    for (int r = 0; r < rings; ++r) {
+      std::vector<int> next;
+      for (int v : free)
+        for (int u : neighbours[static_cast<std::size_t>(v)])
+          if (weight(u) > 0.0) {
+            weight(u) = 0.0;
+            next.push_back(u);
+          }
+      free = std::move(next);
+    }
+    const int before = g.crossings_placed;
+    for (bool push : {true, false}) {
+      const auto [x, deep] = fit_outside(g, rest, weight, body, clearance, push);
+      const int crossings = deep > 0 ? before : count_intersections(x, g.mesh.F);
+      if (crossings >= g.crossings_placed) continue;
+      g.placed = x;
+      g.crossings_placed = crossings;
+    }
+    if (g.crossings_placed <= g.crossings_authored) return;
+    fruitless = g.crossings_placed < before ? 0 : fruitless + 1;
+    if (fruitless == 2) return;
+  }
 }
 
 /// Part names, as segmentation or a label file gives them, of a garment's legs (trouser legs, skirt
@@ -432,6 +508,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   // as one outfit whose pieces are worn in the order given, so that their parts share one global
   // fit and outer pieces are pushed out of inner ones.
   const InsideTest inside(result.body);
+  const auto body_distance = std::make_shared<const MeshDistance>(result.body);
   {
     Stage stage(result, options, "placement");
     std::string report, names;
@@ -484,7 +561,13 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                 p.global_method + ")";
     }
     for (DressedGarment& g : result.garments) {
-      g.crossings_placed = count_intersections(g.placed, g.mesh.F);
+      g.crossings_placed = g.crossings_fitted = count_intersections(g.placed, g.mesh.F);
+      if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
+        untangle(g, *body_distance, options.placement.clearance);
+        report += "; " + g.name + ": crossing itself " + std::to_string(g.crossings_fitted) + " times as fitted, " +
+                  std::to_string(g.crossings_placed) + " with those regions rebuilt (" +
+                  std::to_string(g.crossings_authored) + " as authored)";
+      }
       g.inside_placed = surface_fit(g.placed, inside).inside;
     }
     stage.done(!to_place.empty(), report);
@@ -516,7 +599,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       double duration = 1.0;
       SimulationOptions o = simulation_options(options.quality, duration);
       if (options.settle_seconds > 0.0) duration = options.settle_seconds;
-      o.colliders.push_back(Collider::mesh(std::make_shared<const MeshDistance>(result.body)));
+      o.colliders.push_back(Collider::mesh(body_distance));
       std::vector<ClothModel> models;
       for (std::size_t k = 0; k < result.garments.size(); ++k)
         models.push_back(build_cloth(rest_shape(result.garments[k]), fabrics[k]));

@@ -200,4 +200,19 @@ int orient_closed_components_outward(TriangleMesh& mesh) {
   return flipped;
 }
 
+std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& F, int num_vertices) {
+  std::vector<std::vector<int>> out(static_cast<std::size_t>(num_vertices));
+  for (Eigen::Index f = 0; f < F.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const int a = F(f, k), b = F(f, (k + 1) % 3);
+      out[static_cast<std::size_t>(a)].push_back(b);
+      out[static_cast<std::size_t>(b)].push_back(a);
+    }
+  for (std::vector<int>& n : out) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return out;
+}
+
 }  // namespace dresskit

@@ -127,5 +127,8 @@ class SelfCollision {
 /// tests.
 int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
                         const std::vector<int>& joined = {});
+/// The vertices of those crossings (both ends of each crossing edge and the corners of the
+/// triangle it crosses), sorted, each once.
+std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F);
 
 }  // namespace dresskit

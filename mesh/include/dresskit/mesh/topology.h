@@ -35,6 +35,9 @@ TopologyReport analyse_topology(const TriangleMesh& mesh);
 /// Connected component (through shared vertices) of each face, numbered 0..n-1 in order of first face.
 std::vector<int> face_components(const Eigen::MatrixX3i& F, int num_vertices, int* num_components);
 
+/// Each vertex's neighbours along the faces' edges, sorted, each once.
+std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& F, int num_vertices);
+
 /// One mesh per connected component, largest (most faces) first, with every attribute carried along.
 std::vector<TriangleMesh> split_components(const TriangleMesh& mesh);
 
