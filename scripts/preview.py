@@ -72,17 +72,27 @@ def main():
     fig = plt.figure(figsize=(8, 6))
     light = np.array([0.3, 0.5, 1.0])
     light /= np.linalg.norm(light)
+    # One collection for all meshes, so that their triangles are depth-sorted together. A mesh
+    # without colours gets one of its own (a garment over a body), not grey.
+    palette = np.array([[0.80, 0.36, 0.36], [0.36, 0.55, 0.80], [0.45, 0.70, 0.40], [0.85, 0.70, 0.30]])
+    plain = 0
+    tris_all, base_all = [], []
+    for verts, faces, colours in meshes:
+        # matplotlib's z is up: show dresskit's (x, y, z) as (x, -z, y).
+        v = verts[:, [0, 2, 1]] * np.array([1, -1, 1])
+        tris_all.append(v[faces])
+        if colours is not None:
+            base_all.append(colours[faces].mean(axis=1))
+        else:
+            base_all.append(np.tile(palette[plain % len(palette)], (len(faces), 1)))
+            plain += 1
+    tris, base = np.concatenate(tris_all), np.concatenate(base_all)
+    n = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
+    n /= np.linalg.norm(n, axis=1, keepdims=True) + 1e-30
+    shade = 0.35 + 0.65 * np.abs(n @ np.array([light[0], -light[2], light[1]]))
     for view, (elev, azim) in enumerate([(10, -90), (10, 0)]):
         ax = fig.add_subplot(1, 2, view + 1, projection="3d")
-        for verts, faces, colours in meshes:
-            # matplotlib's z is up: show dresskit's (x, y, z) as (x, -z, y).
-            v = verts[:, [0, 2, 1]] * np.array([1, -1, 1])
-            tris = v[faces]
-            n = np.cross(tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0])
-            n /= np.linalg.norm(n, axis=1, keepdims=True) + 1e-30
-            shade = 0.35 + 0.65 * np.abs(n @ np.array([light[0], -light[2], light[1]]))
-            base = colours[faces].mean(axis=1) if colours is not None else np.full((len(faces), 3), 0.8)
-            ax.add_collection3d(Poly3DCollection(tris, facecolors=base * shade[:, None], linewidths=0))
+        ax.add_collection3d(Poly3DCollection(tris, facecolors=base * shade[:, None], linewidths=0))
         allv = np.vstack([m[0] for m in meshes])[:, [0, 2, 1]] * np.array([1, -1, 1])
         c, r = allv.mean(axis=0), (allv.max(axis=0) - allv.min(axis=0)).max() / 2
         ax.set_xlim(c[0] - r, c[0] + r)
