@@ -6,14 +6,10 @@
 #include <string>
 
 #include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/union_find.h"
 
 namespace dresskit {
 namespace {
-
-int find(std::vector<int>& parent, int a) {
-  while (parent[a] != a) a = parent[a] = parent[parent[a]];
-  return a;
-}
 
 void add_stitch(SeamSet& s, int a, int b0, int b1, double t, StitchLaw law) {
   s.a.push_back(a);
@@ -162,31 +158,29 @@ SeamGaps seam_gaps(const SeamSet& s, const Eigen::MatrixX3d& x, double tolerance
 }
 
 std::vector<int> seam_representatives(const SeamSet& s, int particles) {
-  std::vector<int> parent(static_cast<std::size_t>(particles));
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind sets(particles);
   for (int k = 0; k < s.size(); ++k) {
-    parent[find(parent, s.a[k])] = find(parent, s.b0[k]);
-    parent[find(parent, s.b1[k])] = find(parent, s.b0[k]);
+    sets.unite(s.a[k], s.b0[k]);
+    sets.unite(s.b1[k], s.b0[k]);
   }
-  for (int p = 0; p < particles; ++p) parent[p] = find(parent, p);
-  return parent;
+  std::vector<int> representative(static_cast<std::size_t>(particles));
+  for (int p = 0; p < particles; ++p) representative[static_cast<std::size_t>(p)] = sets.find(p);
+  return representative;
 }
 
 void weld_seams(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, const SeamSet& s,
                 double tolerance, Eigen::MatrixX3d& V, Eigen::MatrixX3i& F, std::vector<int>& to) {
   const int n = static_cast<int>(x.rows());
-  std::vector<int> parent(static_cast<std::size_t>(n));
-  std::iota(parent.begin(), parent.end(), 0);
+  UnionFind sets(n);
   for (int k = 0; k < s.size(); ++k) {
     const int other = s.t[k] == 0.0 ? s.b0[k] : s.t[k] == 1.0 ? s.b1[k] : -1;
-    if (other >= 0 && seam_gap(s, k, x).norm() <= tolerance)
-      parent[find(parent, s.a[k])] = find(parent, other);
+    if (other >= 0 && seam_gap(s, k, x).norm() <= tolerance) sets.unite(s.a[k], other);
   }
   to.assign(static_cast<std::size_t>(n), -1);
   std::vector<int> count;
   std::vector<Eigen::RowVector3d> sum;
   for (int p = 0; p < n; ++p) {
-    const int r = find(parent, p);
+    const int r = sets.find(p);
     if (to[r] < 0) {
       to[r] = static_cast<int>(sum.size());
       sum.emplace_back(Eigen::RowVector3d::Zero());

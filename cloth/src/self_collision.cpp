@@ -1,5 +1,7 @@
 #include "dresskit/cloth/self_collision.h"
 
+#include "dresskit/mesh/union_find.h"
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
@@ -56,18 +58,6 @@ Eigen::Vector3d weighted(const Eigen::MatrixX3d& x, const int idx[4], const doub
   for (int k = 0; k < 4; ++k) p += alpha[k] * row(x, idx[k]);
   return p;
 }
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(static_cast<std::size_t>(n)) {
-    std::iota(parent.begin(), parent.end(), 0);
-  }
-  int find(int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  }
-  void join(int a, int b) { parent[find(a)] = find(b); }
-};
 
 }  // namespace
 
@@ -522,7 +512,7 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
       any = true;
       for (int k = 0; k < 4; ++k) {
         in_zone[idx[k]] = 1;
-        if (k) zones.join(idx[k], idx[0]);
+        if (k) zones.unite(idx[k], idx[0]);
       }
     }
     if (!any) {

@@ -1,5 +1,7 @@
 #include "dresskit/mesh/topology.h"
 
+#include "dresskit/mesh/union_find.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <numeric>
@@ -7,16 +9,6 @@
 
 namespace dresskit {
 namespace {
-
-struct UnionFind {
-  std::vector<int> parent;
-  explicit UnionFind(int n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  int find(int x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  void unite(int a, int b) { parent[find(a)] = find(b); }
-};
 
 std::uint64_t edge_key(int a, int b) {
   if (a > b) std::swap(a, b);
@@ -108,19 +100,14 @@ TopologyReport analyse_topology(const TriangleMesh& mesh) {
     for (int k = 0; k < 3; ++k) incident[fill[mesh.F(f, k)]++] = f;
   }
   std::unordered_map<int, int> first_face_at_neighbour;
-  std::vector<int> local_parent;
+  UnionFind fan;
   for (int v = 0; v < nv; ++v) {
     const int n = valence[v];
     if (n == 0) {
       ++r.num_isolated_vertices;
       continue;
     }
-    local_parent.resize(n);
-    std::iota(local_parent.begin(), local_parent.end(), 0);
-    auto find = [&](int x) {
-      while (local_parent[x] != x) x = local_parent[x] = local_parent[local_parent[x]];
-      return x;
-    };
+    fan.reset(n);
     first_face_at_neighbour.clear();
     for (int i = 0; i < n; ++i) {
       const int f = incident[start[v] + i];
@@ -128,11 +115,11 @@ TopologyReport analyse_topology(const TriangleMesh& mesh) {
         const int w = mesh.F(f, k);
         if (w == v) continue;
         auto [it, inserted] = first_face_at_neighbour.emplace(w, i);
-        if (!inserted) local_parent[find(i)] = find(it->second);
+        if (!inserted) fan.unite(i, it->second);
       }
     }
     int fans = 0;
-    for (int i = 0; i < n; ++i) fans += find(i) == i;
+    for (int i = 0; i < n; ++i) fans += fan.find(i) == i;
     if (fans > 1) ++r.num_non_manifold_vertices;
   }
 

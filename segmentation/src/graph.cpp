@@ -1,5 +1,7 @@
 #include "dresskit/segmentation/graph.h"
 
+#include "dresskit/mesh/union_find.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -187,21 +189,13 @@ Eigen::SparseMatrix<double> affinity_matrix(const MeshGraph& graph) {
 }
 
 int connected_components(const MeshGraph& graph, Eigen::VectorXi& component) {
-  std::vector<int> parent(graph.num_vertices);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int a) {
-    while (parent[a] != a) a = parent[a] = parent[parent[a]];
-    return a;
-  };
-  for (int e = 0; e < graph.num_edges(); ++e) {
-    const int a = find(graph.from(e)), b = find(graph.to(e));
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  }
+  UnionFind sets(graph.num_vertices);
+  for (int e = 0; e < graph.num_edges(); ++e) sets.unite(graph.from(e), graph.to(e));
   component.setConstant(graph.num_vertices, -1);
   std::vector<int> index(graph.num_vertices, -1);
   int count = 0;
   for (int v = 0; v < graph.num_vertices; ++v) {
-    const int root = find(v);
+    const int root = sets.find(v);
     if (index[root] < 0) index[root] = count++;
     component(v) = index[root];
   }

@@ -1,4 +1,4 @@
-#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/label_cleanup.h"
 
 #include <Eigen/SparseCholesky>
 #include <algorithm>

@@ -10,7 +10,7 @@
 #include <tuple>
 
 #include "dresskit/mesh/errors.h"
-#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/label_cleanup.h"
 #include "dresskit/segmentation/naming.h"
 #include "dresskit/segmentation/skirt.h"
 

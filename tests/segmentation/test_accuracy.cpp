@@ -9,7 +9,7 @@
 #include <map>
 
 #include "dresskit/mesh/io.h"
-#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/label_cleanup.h"
 #include "dresskit/segmentation/graph.h"
 #include "dresskit/segmentation/metrics.h"
 #include "dresskit/segmentation/segment.h"

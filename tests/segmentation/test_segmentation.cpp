@@ -8,7 +8,7 @@
 #include "../mesh/mesh_fixtures.h"
 #include "../scene/scene_fixture.h"
 #include "dresskit/mesh/errors.h"
-#include "dresskit/segmentation/cleanup.h"
+#include "dresskit/segmentation/label_cleanup.h"
 #include "dresskit/segmentation/graph.h"
 #include "dresskit/segmentation/kmeans.h"
 #include "dresskit/segmentation/metrics.h"
