@@ -13,11 +13,11 @@
 // BDF2 (options.time_scheme): x_{n+1} = x̂ + h' v_{n+1} and v_{n+1} = v̂ + h' M⁻¹ f(x_{n+1}) with
 // h' = 2h/3, x̂ = (4 x_n − x_{n−1})/3, v̂ = (4 v_n − v_{n−1})/3 — the same minimisation as backward
 // Euler with the inertia target x̂ + h' v̂ and the step h' (air damping acts on (x − x̂)/h'). The
-// first step (and the first after a change of step size or set_state) is backward Euler. Tried:
-// starting BDF2 from x_{n−1} = x_n − h v_n, v_{n−1} = v_n kept the whole run first order (the
+// first step (and the first after a change of step size or set_state) is backward Euler: BDF2
+// started from x_{n−1} = x_n − h v_n, v_{n−1} = v_n stays first order for the whole run (the
 // start's O(h) velocity error; order 1.2–1.3 on the oscillator test), and a Taylor start with the
-// current acceleration was second order but blew up on very stiff springs (an explicit step in
-// disguise).
+// current acceleration, second order, is an explicit step in disguise that blows up on very stiff
+// springs.
 //
 // Speed (docs/results.md, bench_cloth_error): the global step's three triangular solves dominate;
 // they run on an interleaved copy of the factor (interleaved_cholesky.h), by default in single
