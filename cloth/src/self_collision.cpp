@@ -10,6 +10,7 @@
 #include <unordered_map>
 
 #include "dresskit/cloth/geometry.h"
+#include "self_collision_internal.h"
 
 namespace dresskit {
 
@@ -34,16 +35,15 @@ EdgeList triangle_edges(const Eigen::MatrixX3i& F) {
   return e;
 }
 
-namespace {
-
-/// Representatives: the given ones, or each particle its own.
-std::vector<int> representatives(std::vector<int> joined, int particles) {
+std::vector<int> detail::representatives(std::vector<int> joined, int particles) {
   if (joined.empty()) {
     joined.resize(static_cast<std::size_t>(particles));
     std::iota(joined.begin(), joined.end(), 0);
   }
   return joined;
 }
+
+namespace {
 
 Eigen::Vector3d row(const Eigen::MatrixX3d& m, int i) { return m.row(i).transpose(); }
 
@@ -65,7 +65,7 @@ SelfCollision::SelfCollision(const Eigen::MatrixX3i& faces, int particles, std::
                              SelfCollisionOptions options)
     : faces_(faces),
       edges_(triangle_edges(faces)),
-      rep_(representatives(std::move(joined), particles)),
+      rep_(detail::representatives(std::move(joined), particles)),
       vertex_owner_(static_cast<std::size_t>(particles), -1),
       options_(options) {
   for (int f = 0; f < faces_.rows(); ++f)
@@ -597,64 +597,4 @@ std::vector<std::array<int, 3>> SelfCollision::listed_pairs() const {
 // edges that each owns against the other (an edge and a triangle sharing a particle excluded). An edge's box lies inside
 // its owner's, so every crossing edge–triangle pair is met once. (A box query per edge took ~7 ms
 // on a 64² cloth, 18 % of a cloth-onto-sphere run that counted at every frame.)
-namespace {
-/// Calls crossing(e, f) for every edge e (triangle_edges(F) numbering) that crosses a face f it
-/// does not share a particle with (after joined).
-template <typename Crossing>
-void for_each_crossing(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
-                       const std::vector<int>& rep, const EdgeList& edges, Crossing crossing) {
-  const TriangleBvh bvh(x, F);
-  auto owned_edges_against = [&](int ta, int tb) {
-    for (int k = 0; k < 3; ++k) {
-      const int e = edges.face_edges(ta, k);
-      if (edges.owner[e] != ta) continue;
-      const int a = rep[edges.i[e]], b = rep[edges.j[e]];
-      bool shared = false;
-      for (int m = 0; m < 3; ++m) shared = shared || rep[F(tb, m)] == a || rep[F(tb, m)] == b;
-      if (!shared && segment_crosses_triangle(row(x, edges.i[e]), row(x, edges.j[e]), row(x, F(tb, 0)),
-                                   row(x, F(tb, 1)), row(x, F(tb, 2))))
-        crossing(e, tb);
-    }
-  };
-  bvh.self_pairs([&](int ta, int tb) {
-    owned_edges_against(ta, tb);
-    owned_edges_against(tb, ta);
-  });
-}
-}  // namespace
-
-int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
-                        const std::vector<int>& joined) {
-  if (F.rows() == 0) return 0;
-  int crossings = 0;
-  for_each_crossing(x, F, representatives(joined, static_cast<int>(x.rows())), triangle_edges(F),
-                    [&](int, int) { ++crossings; });
-  return crossings;
-}
-
-std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F) {
-  std::vector<char> in(static_cast<std::size_t>(x.rows()), 0);
-  if (F.rows() > 0) {
-    const EdgeList edges = triangle_edges(F);
-    for_each_crossing(x, F, representatives({}, static_cast<int>(x.rows())), edges, [&](int e, int f) {
-      for (int p : {edges.i[e], edges.j[e], F(f, 0), F(f, 1), F(f, 2)}) in[static_cast<std::size_t>(p)] = 1;
-    });
-  }
-  std::vector<int> out;
-  for (std::size_t p = 0; p < in.size(); ++p)
-    if (in[p]) out.push_back(static_cast<int>(p));
-  return out;
-}
-
-void SelfCollision::find_tangles(const Eigen::MatrixX3d& x0) {
-  tangled_.assign(static_cast<std::size_t>(x0.rows()), 0);
-  tangled_count_ = 0;
-  for_each_crossing(x0, faces_, rep_, edges_, [&](int e, int f) {
-    for (int p : {edges_.i[e], edges_.j[e], faces_(f, 0), faces_(f, 1), faces_(f, 2)}) {
-      tangled_count_ += !tangled_[p];
-      tangled_[p] = 1;
-    }
-  });
-}
-
 }  // namespace dresskit

@@ -20,8 +20,10 @@
 #include "dresskit/mesh/inside.h"
 #include "dresskit/mesh/topology.h"
 #include "dresskit/thickness/thickness.h"
+#include "garments.h"
 
 namespace dresskit {
+using namespace dressing_detail;
 
 MeshFile MeshFile::file(std::string path, LoadOptions load, std::string labels) {
   MeshFile f;
@@ -177,13 +179,6 @@ double max_structural_strain(const ClothModel& m, const Eigen::MatrixX3d& x) {
   return worst;
 }
 
-/// The garment's rest shape for settling: as made, graded by the placement's size change.
-TriangleMesh rest_shape(const DressedGarment& g) {
-  TriangleMesh rest = g.mesh;
-  if (g.placed_by_placement) rest.V *= g.placement.global_scale;
-  return rest;
-}
-
 /// Where two layers overlap (the outer one's vertices within `overlap` of the inner one), the 5th
 /// and 50th percentiles of the distance from those vertices to the inner one's triangles [m], and
 /// their count.
@@ -204,137 +199,6 @@ Gap layer_gap(const Eigen::MatrixX3d& outer, const Eigen::MatrixX3d& inner, cons
   if (d.empty()) return {};
   std::sort(d.begin(), d.end());
   return {d[d.size() / 20], d[d.size() / 2], static_cast<int>(d.size())};
-}
-
-/// Weight of a vertex held at a position in an as-rigid-as-possible fit (arap_fit): moving it one
-/// mean edge costs as much as stretching 100 edges by 100 %.
-constexpr double kHeld = 100.0;
-
-/// An as-rigid-as-possible fit of a garment's rest shape to its placed positions, vertices of
-/// weight 0 free, the others held, that stays out of the body: with `push`, free vertices the fit
-/// takes into the body are first held `clearance` outside it along its normal; then any still
-/// inside are held where placement put them (outside it). Returns the positions and how many
-/// vertices lie deeper than 5 mm inside the body.
-std::pair<Eigen::MatrixX3d, int> fit_outside(const DressedGarment& g, const Eigen::MatrixX3d& rest, Eigen::VectorXd weight,
-                                             const MeshDistance& body, double clearance, bool push) {
-  Eigen::MatrixX3d target = g.placed;
-  Eigen::MatrixX3d x = arap_fit(rest, g.mesh.F, target, weight);
-  auto depth = [&](Eigen::Index v) {
-    Eigen::Vector3d n;
-    const double d = body.distance(x.row(v).transpose(), &n);
-    return std::make_pair(clearance - d, n);
-  };
-  for (int round = 0, pushes = push ? 8 : 0; round < pushes + 4; ++round) {
-    const bool pushing = round < pushes;
-    int moved = 0;
-    for (Eigen::Index v = 0; v < x.rows(); ++v) {
-      const auto [under, n] = depth(v);
-      if (under <= 0.0 || weight(v) >= kHeld) continue;
-      target.row(v) = pushing ? Eigen::RowVector3d(x.row(v) + under * n.transpose()) : g.placed.row(v);
-      weight(v) = pushing ? 1.0 : kHeld;
-      ++moved;
-    }
-    if (moved > 0) x = arap_fit(rest, g.mesh.F, target, weight);
-    else if (pushing) round = pushes - 1;  // nothing inside: on to the holding rounds
-    else break;
-  }
-  int deep = 0;
-  for (Eigen::Index v = 0; v < x.rows(); ++v) deep += depth(v).first > clearance + 0.005;
-  return {x, deep};
-}
-
-/// Where placement made a garment cross itself (bending parts apart and together by their own
-/// transforms), the crossing regions are rebuilt from the garment's rest shape, which keeps their
-/// edges' lengths: the vertices of each crossing and their neighbours `rings` deep are left free
-/// in fit_outside (with and without pushing), the rest held. Wider regions in turn until the
-/// garment crosses itself no more than as authored or two widths in a row do not help; a fit is
-/// kept only where it lowers the crossings and takes no vertex deep into the body.
-void untangle(DressedGarment& g, const MeshDistance& body, double clearance) {
-  const Eigen::MatrixX3d rest = rest_shape(g).V;
-  const std::vector<std::vector<int>> neighbours = vertex_neighbours(g.mesh.F, g.mesh.num_vertices());
-  int fruitless = 0;
-  for (int rings : {2, 4, 8, 12}) {
-    Eigen::VectorXd weight = Eigen::VectorXd::Constant(g.mesh.num_vertices(), kHeld);
-    std::vector<int> free = crossing_vertices(g.placed, g.mesh.F);
-    for (int v : free) weight(v) = 0.0;
-    for (int r = 0; r < rings; ++r) {
-      std::vector<int> next;
-      for (int v : free)
-        for (int u : neighbours[static_cast<std::size_t>(v)])
-          if (weight(u) > 0.0) {
-            weight(u) = 0.0;
-            next.push_back(u);
-          }
-      free = std::move(next);
-    }
-    const int before = g.crossings_placed;
-    for (bool push : {true, false}) {
-      const auto [x, deep] = fit_outside(g, rest, weight, body, clearance, push);
-      const int crossings = deep > 0 ? before : count_intersections(x, g.mesh.F);
-      if (crossings >= g.crossings_placed) continue;
-      g.placed = x;
-      g.crossings_placed = crossings;
-    }
-    if (g.crossings_placed <= g.crossings_authored) return;
-    fruitless = g.crossings_placed < before ? 0 : fruitless + 1;
-    if (fruitless == 2) return;
-  }
-}
-
-/// Part names, as segmentation or a label file gives them, of a garment's legs (trouser legs, skirt
-/// parts) and of its sleeves.
-bool names_legs(const std::string& part) { return part.rfind("leg", 0) == 0 || part.rfind("skirt", 0) == 0; }
-bool names_sleeves(const std::string& part) { return part.rfind("sleeve", 0) == 0 || part.rfind("arm", 0) == 0; }
-
-/// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit); otherwise a bottom
-/// (trousers, a skirt).
-bool is_top(const DressedGarment& g) {
-  const auto& names = g.mesh.label_names;
-  return std::any_of(names.begin(), names.end(), names_sleeves) || std::none_of(names.begin(), names.end(), names_legs);
-}
-
-/// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts and no
-/// sleeves (trousers, a skirt; not a dress or a jumpsuit, which hang from the shoulders); its
-/// vertices within `band` of its top, where they lie outside the body and their edges are
-/// stretched by at most `max_strain` against `rest`. A waist placed tighter than that holds by
-/// itself, and held it would keep the strain limit from ever being met. Returns garment rows.
-std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
-                           const InsideTest& inside) {
-  if (!(band > 0.0)) return {};
-  std::vector<char> loose(static_cast<std::size_t>(g.mesh.num_vertices()), 1);
-  for (int f = 0; f < g.mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = g.mesh.F(f, k), b = g.mesh.F(f, (k + 1) % 3);
-      const double L0 = (rest.row(a) - rest.row(b)).norm();
-      if (L0 > 0.0 && (g.placed.row(a) - g.placed.row(b)).norm() > (1.0 + max_strain) * L0)
-        loose[static_cast<std::size_t>(a)] = loose[static_cast<std::size_t>(b)] = 0;
-    }
-  int pieces = 0;
-  const std::vector<int> piece = face_components(g.mesh.F, g.mesh.num_vertices(), &pieces);
-  std::vector<int> piece_of(static_cast<std::size_t>(g.mesh.num_vertices()), -1);
-  for (int f = 0; f < g.mesh.num_faces(); ++f)
-    for (int k = 0; k < 3; ++k) piece_of[static_cast<std::size_t>(g.mesh.F(f, k))] = piece[static_cast<std::size_t>(f)];
-  std::vector<char> legs(static_cast<std::size_t>(pieces), 0), sleeves(static_cast<std::size_t>(pieces), 0);
-  std::vector<double> top(static_cast<std::size_t>(pieces), -HUGE_VAL);
-  for (int v = 0; v < g.mesh.num_vertices(); ++v) {
-    const int c = piece_of[static_cast<std::size_t>(v)];
-    if (c < 0) continue;
-    top[static_cast<std::size_t>(c)] = std::max(top[static_cast<std::size_t>(c)], g.placed(v, 1));
-    const int l = g.mesh.labels.size() ? g.mesh.labels(v) : -1;
-    if (l < 0) continue;
-    const std::string& name = g.mesh.label_names[static_cast<std::size_t>(l)];
-    legs[static_cast<std::size_t>(c)] |= names_legs(name);
-    sleeves[static_cast<std::size_t>(c)] |= names_sleeves(name);
-  }
-  std::vector<int> belt;
-  for (int v = 0; v < g.mesh.num_vertices(); ++v) {
-    const int c = piece_of[static_cast<std::size_t>(v)];
-    if (c < 0 || !legs[static_cast<std::size_t>(c)] || sleeves[static_cast<std::size_t>(c)]) continue;
-    if (g.placed(v, 1) >= top[static_cast<std::size_t>(c)] - band && loose[static_cast<std::size_t>(v)] &&
-        inside.signed_distance(g.placed.row(v).transpose()) > 0.0)
-      belt.push_back(v);
-  }
-  return belt;
 }
 
 /// Parts of the same name from several garments keep apart as name_2, name_3, ... (each garment's

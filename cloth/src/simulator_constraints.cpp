@@ -1,0 +1,146 @@
+// ClothSimulator's position passes after the integrator: strain limiting, seams, layer order.
+#include "dresskit/cloth/simulator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "dresskit/cloth/geometry.h"
+#include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/seams.h"
+#include "simulator_internal.h"
+
+namespace dresskit {
+using detail::row;
+
+void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool after_contact) {
+  const SpringSet& s = model_.springs;
+  const double limit = 1.0 + options_.strain_limit;
+  const double done = limit + options_.strain_limit_tolerance;
+  const int n = static_cast<int>(x_.rows());
+  // Active set: a spring is looked at only when one of its ends has moved since it was last found
+  // within its bounds. The first sweep's set: every particle (all), or those that moved since the
+  // last call ended with every spring within its bounds (a later round of a step: the cloth–cloth
+  // pass and the collider pass moved a few particles).
+  std::vector<char>& active = limit_active_;
+  std::vector<char>& next = limit_next_;
+  all = all || !limit_converged_ || limit_end_.rows() != n;
+  active.assign(static_cast<std::size_t>(n), 1);
+  if (!all)
+    for (int p = 0; p < n; ++p) active[p] = x_.row(p) != limit_end_.row(p);
+  next.assign(static_cast<std::size_t>(n), 0);
+  // In a later round of a step the particles that moved since the last call were moved by the
+  // contact passes (cloth–cloth, colliders, sewing): a length-limited spring with one such end and
+  // one free end moves only the free end (shock propagation, Guendelman et al. 2003). Split
+  // half-way, a double layer whose inner layer the cloth–cloth pass had just stopped on the layer
+  // beneath was pushed back into it by half of each correction, the next pass stopped it again, and
+  // the rounds ended with the double layer up to 0.6 mm below its lower limit at landing.
+  std::vector<char>& held = limit_held_;
+  held.assign(static_cast<std::size_t>(n), 0);
+  if (!all) held = active;
+  // Moves i and j so that their distance becomes `target`; false when it was within `slack` of it.
+  // A move of particle p that a collider pass of this step pushed out loses its part into the
+  // collider: the particle slides along the surface instead of being pulled back in.
+  auto slide = [&](int p, Eigen::Vector3d move) {
+    const Eigen::Vector3d n = row(contact_normal_, p);
+    const double into = move.dot(n);
+    if (into < 0.0) move -= into * n;
+    return move;
+  };
+  auto correct = [&](int i, int j, double target, double slack_low, double slack_high,
+                     bool hold = false, bool sliding = false) {
+    if (pinned_[i] && pinned_[j]) return false;
+    const Eigen::Vector3d d = row(x_, j) - row(x_, i);
+    const double L = d.norm();
+    if ((L <= target + slack_high && L >= target - slack_low) || L == 0.0) return false;
+    const Eigen::Vector3d c = (L - target) / L * d;  // moves i towards j by this much in total
+    if (pinned_[i] || (hold && held[i] && !held[j])) {
+      x_.row(j) += (sliding ? slide(j, -c) : Eigen::Vector3d(-c)).transpose();
+    } else if (pinned_[j] || (hold && held[j] && !held[i])) {
+      x_.row(i) += (sliding ? slide(i, c) : c).transpose();
+    } else if (sliding) {
+      x_.row(i) += slide(i, 0.5 * c).transpose();
+      x_.row(j) += slide(j, -0.5 * c).transpose();
+    } else {
+      x_.row(i) += 0.5 * c.transpose();
+      x_.row(j) -= 0.5 * c.transpose();
+    }
+    active[i] = active[j] = next[i] = next[j] = 1;  // later springs this sweep, earlier ones next
+    return true;
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  limit_converged_ = false;
+  for (int sweep = 0; sweep < options_.strain_limit_iterations; ++sweep) {
+    int violated = 0;
+    if (options_.strain_limiting) {
+      for (int k = 0; k < s.size(); ++k) {
+        if (s.type[k] == SpringType::bending || s.type[k] == SpringType::layer_structural ||
+            s.type[k] == SpringType::layer_shear || !(active[s.i[k]] || active[s.j[k]]))
+          continue;
+        const double L0 = s.rest_length[k];
+        violated += correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0, false, after_contact);
+      }
+    }
+    for (std::size_t m = 0; m < s.limited.size(); ++m) {
+      const int k = s.limited[m];
+      if (!(active[s.i[k]] || active[s.j[k]])) continue;
+      const Eigen::Vector3d d = row(x_, s.j[k]) - row(x_, s.i[k]);
+      const double L = d.norm(), lo = s.limit_min[m], hi = s.limit_max[m];
+      const double slack = options_.strain_limit_tolerance * s.rest_length[k];
+      if (L > hi) violated += correct(s.i[k], s.j[k], hi, inf, slack, true);
+      else if (L < lo) violated += correct(s.i[k], s.j[k], lo, slack, inf, true);
+    }
+    r.strain_limit_sweeps = sweep + 1;
+    r.springs_limited += violated;
+    if (violated == 0) {
+      limit_converged_ = true;
+      break;
+    }
+    active.swap(next);
+    std::fill(next.begin(), next.end(), 0);
+  }
+  limit_end_ = x_;
+  v_ += (x_ - x_before) / dt_;
+}
+
+// Sewing: a stitch whose two points have come within the seam tolerance is sewn, and from then on
+// its points are moved together (by inverse mass, as the collision corrections), so a closed seam
+// stays closed; velocities follow the moves.
+double ClothSimulator::sew(StepResult& r) {
+  const SeamSet& s = model_.seams;
+  const Eigen::MatrixX3d before = x_;
+  int idx[4] = {0, 0, 0, 0};
+  double w[4] = {0, 0, 0, 0}, widest = 0.0;
+  for (int k = 0; k < s.size(); ++k) {
+    const Eigen::Vector3d c = seam_gap(s, k, x_);
+    if (!sewn_[k]) {
+      if (c.norm() > options_.seam_tolerance) continue;
+      sewn_[k] = 1;
+      ++r.stitches_sewn;
+    }
+    widest = std::max(widest, c.norm());
+    seam_weights(s, k, idx, w);
+    shift_weighted_difference(x_, inverse_mass_, idx, w, -c);
+  }
+  v_ += (x_ - before) / dt_;
+  return widest;
+}
+
+void ClothSimulator::keep_layer_order(StepResult& r) {
+  const LayerContacts c = match_layers(model_, x_, options_.colliders);
+  const int layers = static_cast<int>(model_.layer_offset.size());
+  for (int l = 1; l < layers; ++l) {  // inner layers first: their pushes carry outwards
+    for (int p = 0; p < x_.rows(); ++p) {
+      if (model_.layer[p] != l || c.below_face[p] < 0 || pinned_[p]) continue;
+      Eigen::Vector3d n;
+      const double dp = options_.colliders[c.collider[p]].distance(row(x_, p), &n);
+      const double needed = c.height_below(p, model_, x_, options_.colliders) + model_.layer_min_gap[l];
+      if (dp >= needed) continue;
+      x_.row(p) += std::min(needed - dp, layer_push_cap_) * n.transpose();
+      const double vn = v_.row(p).dot(n.transpose());
+      if (vn < 0.0) v_.row(p) -= vn * n.transpose();
+      ++r.layer_pushes;
+    }
+  }
+}
+
+}  // namespace dresskit

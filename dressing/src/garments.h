@@ -1,0 +1,30 @@
+#pragma once
+// What the dressing pipeline does to one garment (dress.cpp): its rest shape, the regions its
+// placement made cross rebuilt, its kind, and its waistband.
+#include <vector>
+
+#include "dresskit/cloth/mesh_distance.h"
+#include "dresskit/dressing/dress.h"
+#include "dresskit/mesh/inside.h"
+
+namespace dresskit::dressing_detail {
+
+/// The garment's rest shape for settling: as made, graded by the placement's size change.
+TriangleMesh rest_shape(const DressedGarment& g);
+
+/// Rebuilds the regions where the placed garment crosses itself more often than as authored
+/// (garments.cpp); updates placed and crossings_placed.
+void untangle(DressedGarment& g, const MeshDistance& body, double clearance);
+
+/// Part names of a garment's legs (trouser legs, skirt parts) and of its sleeves.
+bool names_legs(const std::string& part);
+bool names_sleeves(const std::string& part);
+
+/// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit); otherwise a bottom.
+bool is_top(const DressedGarment& g);
+
+/// The rows of the waistband of each bottom among a garment's pieces (garments.cpp).
+std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
+                           const InsideTest& inside);
+
+}  // namespace dresskit::dressing_detail
