@@ -17,8 +17,8 @@
 #include <string>
 
 #include "bench_common.h"
-#include "alignment/alignment_shapes.h"
-#include "dresskit/alignment/evaluation.h"
+#include "dresskit/testing/alignment_shapes.h"
+#include "dresskit/testing/registration_trials.h"
 
 using namespace dresskit;
 

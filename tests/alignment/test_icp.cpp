@@ -6,8 +6,8 @@
 #include <limits>
 
 #include "../../alignment/src/kd_tree.h"  // private to the library; tested here
-#include "alignment/alignment_shapes.h"
-#include "dresskit/alignment/evaluation.h"
+#include "dresskit/testing/alignment_shapes.h"
+#include "dresskit/testing/registration_trials.h"
 #include "dresskit/mesh/errors.h"
 #include "test_data.h"
 

@@ -6,7 +6,7 @@
 #include <numeric>
 #include <random>
 
-#include "alignment/alignment_shapes.h"
+#include "dresskit/testing/alignment_shapes.h"
 #include "dresskit/alignment/placement.h"
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/mesh_distance.h"

@@ -1,4 +1,4 @@
-#include "dresskit/alignment/evaluation.h"
+#include "dresskit/testing/registration_trials.h"
 
 #include <algorithm>
 #include <cmath>
