@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "dresskit/mesh/topology.h"
-#include "dresskit/scene/garments.h"
-#include "dresskit/scene/mannequin.h"
+#include "dresskit/mannequin/garments.h"
+#include "dresskit/mannequin/mannequin.h"
 
 using namespace dresskit;
 

@@ -6,7 +6,7 @@
 
 #include "dresskit/alignment/icp.h"
 #include "dresskit/mesh/io.h"
-#include "scene/scene_fixture.h"
+#include "mannequin/mannequin_fixture.h"
 #include "test_data.h"
 #include "tools/cli_run.h"
 

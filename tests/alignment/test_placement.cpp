@@ -14,7 +14,7 @@
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/segmentation/segment.h"
 #include "dresskit/mesh/errors.h"
-#include "scene/scene_fixture.h"
+#include "mannequin/mannequin_fixture.h"
 #include "test_data.h"
 
 using namespace dresskit;

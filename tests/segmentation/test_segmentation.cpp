@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "../mesh/mesh_fixtures.h"
-#include "../scene/scene_fixture.h"
+#include "../mannequin/mannequin_fixture.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/segmentation/label_cleanup.h"
 #include "dresskit/segmentation/graph.h"

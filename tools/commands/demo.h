@@ -5,8 +5,8 @@
 
 #include "commands/command.h"
 
-#include "dresskit/scene/garments.h"
-#include "dresskit/scene/mannequin.h"
+#include "dresskit/mannequin/garments.h"
+#include "dresskit/mannequin/mannequin.h"
 
 namespace dresskit::cli {
 

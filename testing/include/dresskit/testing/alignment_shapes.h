@@ -8,7 +8,7 @@
 #include "dresskit/alignment/icp.h"
 #include "dresskit/alignment/part_labels.h"
 #include "dresskit/mesh/io.h"
-#include "dresskit/scene/mannequin.h"
+#include "dresskit/mannequin/mannequin.h"
 
 namespace dresskit::test {
 

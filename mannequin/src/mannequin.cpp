@@ -1,4 +1,4 @@
-#include "dresskit/scene/mannequin.h"
+#include "dresskit/mannequin/mannequin.h"
 
 #include <cmath>
 #include <stdexcept>

@@ -1,4 +1,4 @@
-#include "dresskit/scene/garments.h"
+#include "dresskit/mannequin/garments.h"
 
 #include <cmath>
 #include <limits>

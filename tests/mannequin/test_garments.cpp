@@ -4,7 +4,7 @@
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
-#include "scene_fixture.h"
+#include "mannequin_fixture.h"
 
 using namespace dresskit;
 

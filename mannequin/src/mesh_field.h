@@ -3,7 +3,7 @@
 #include <functional>
 
 #include "dresskit/mesh/triangle_mesh.h"
-#include "dresskit/scene/implicit.h"
+#include "dresskit/mannequin/implicit.h"
 
 namespace dresskit {
 

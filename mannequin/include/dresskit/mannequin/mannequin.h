@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "dresskit/mesh/triangle_mesh.h"
-#include "dresskit/scene/implicit.h"
+#include "dresskit/mannequin/implicit.h"
 
 namespace dresskit {
 

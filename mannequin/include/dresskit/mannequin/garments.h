@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "dresskit/mesh/triangle_mesh.h"
-#include "dresskit/scene/mannequin.h"
+#include "dresskit/mannequin/mannequin.h"
 
 namespace dresskit {
 

@@ -1,7 +1,7 @@
 #pragma once
 // The default mannequin and its garments, built once per test program (they take about a second).
-#include "dresskit/scene/garments.h"
-#include "dresskit/scene/mannequin.h"
+#include "dresskit/mannequin/garments.h"
+#include "dresskit/mannequin/mannequin.h"
 
 namespace dresskit::test {
 

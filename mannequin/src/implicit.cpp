@@ -1,4 +1,4 @@
-#include "dresskit/scene/implicit.h"
+#include "dresskit/mannequin/implicit.h"
 
 #include <algorithm>
 #include <cmath>
