@@ -34,6 +34,7 @@
 #define DRESSKIT_SSE2 1
 #endif
 
+#include "dresskit/mesh/names.h"
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/cloth/stiffness_law.h"
@@ -45,27 +46,16 @@
 namespace dresskit {
 using namespace pd;
 
-TimeScheme parse_time_scheme(const std::string& text) {
-  if (text == "backward_euler") return TimeScheme::backward_euler;
-  if (text == "bdf2") return TimeScheme::bdf2;
-  if (text == "midpoint") return TimeScheme::midpoint;
-  if (text == "tr_bdf2") return TimeScheme::tr_bdf2;
-  throw InputError("time_scheme: '" + text + "' is not backward_euler, bdf2, midpoint or tr_bdf2");
-}
+namespace {
+const NameTable<TimeScheme> kTimeSchemes = {{"backward_euler", TimeScheme::backward_euler},
+                                            {"bdf2", TimeScheme::bdf2},
+                                            {"midpoint", TimeScheme::midpoint},
+                                            {"tr_bdf2", TimeScheme::tr_bdf2}};
+}  // namespace
 
-std::string to_string(TimeScheme scheme) {
-  switch (scheme) {
-    case TimeScheme::backward_euler:
-      return "backward_euler";
-    case TimeScheme::bdf2:
-      return "bdf2";
-    case TimeScheme::midpoint:
-      return "midpoint";
-    case TimeScheme::tr_bdf2:
-      return "tr_bdf2";
-  }
-  return "?";
-}
+TimeScheme parse_time_scheme(const std::string& text) { return parse_name(text, kTimeSchemes, "time_scheme"); }
+
+std::string to_string(TimeScheme scheme) { return name_of(scheme, kTimeSchemes); }
 
 // The factorisation for the step h in the matrix: the current one, one kept from a recent step
 // size (BDF2's backward Euler start-up, adaptive steps dt / 2^k), or a new one.

@@ -1,4 +1,5 @@
 // ClothSimulator's options: integrator names, checks of the values.
+#include "dresskit/mesh/names.h"
 #include "dresskit/cloth/simulator.h"
 
 #include <cmath>
@@ -8,23 +9,18 @@
 
 namespace dresskit {
 
-Integrator parse_integrator(const std::string& text) {
-  if (text == "symplectic" || text == "symplectic_euler") return Integrator::symplectic_euler;
-  if (text == "implicit" || text == "implicit_euler") return Integrator::implicit_euler;
-  if (text == "newton") return Integrator::newton;
-  if (text == "projective") return Integrator::projective;
-  throw InputError("integrator: '" + text + "' is not symplectic, implicit, newton or projective");
-}
+namespace {
+const NameTable<Integrator> kIntegrators = {{"symplectic", Integrator::symplectic_euler},
+                                            {"symplectic_euler", Integrator::symplectic_euler},
+                                            {"implicit", Integrator::implicit_euler},
+                                            {"implicit_euler", Integrator::implicit_euler},
+                                            {"newton", Integrator::newton},
+                                            {"projective", Integrator::projective}};
+}  // namespace
 
-std::string to_string(Integrator integrator) {
-  switch (integrator) {
-    case Integrator::symplectic_euler: return "symplectic";
-    case Integrator::implicit_euler: return "implicit";
-    case Integrator::newton: return "newton";
-    case Integrator::projective: return "projective";
-  }
-  return "?";
-}
+Integrator parse_integrator(const std::string& text) { return parse_name(text, kIntegrators, "integrator"); }
+
+std::string to_string(Integrator integrator) { return name_of(integrator, kIntegrators); }
 
 void check_options(const SimulationOptions& o) {
   auto need = [](bool ok, const std::string& what) {

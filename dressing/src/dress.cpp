@@ -1,3 +1,4 @@
+#include "dresskit/mesh/names.h"
 #include "dresskit/dressing/dress.h"
 
 #include <algorithm>
@@ -40,21 +41,14 @@ MeshFile MeshFile::given(std::string name, TriangleMesh mesh) {
   return f;
 }
 
-DressQuality parse_quality(const std::string& text) {
-  if (text == "fast") return DressQuality::fast;
-  if (text == "balanced") return DressQuality::balanced;
-  if (text == "accurate") return DressQuality::accurate;
-  throw InputError("quality: '" + text + "' is not fast, balanced or accurate");
-}
+namespace {
+const NameTable<DressQuality> kQualities = {
+    {"fast", DressQuality::fast}, {"balanced", DressQuality::balanced}, {"accurate", DressQuality::accurate}};
+}  // namespace
 
-std::string to_string(DressQuality quality) {
-  switch (quality) {
-    case DressQuality::fast: return "fast";
-    case DressQuality::balanced: return "balanced";
-    case DressQuality::accurate: return "accurate";
-  }
-  return "?";
-}
+DressQuality parse_quality(const std::string& text) { return parse_name(text, kQualities, "quality"); }
+
+std::string to_string(DressQuality quality) { return name_of(quality, kQualities); }
 
 namespace {
 using Clock = std::chrono::steady_clock;

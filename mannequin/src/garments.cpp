@@ -1,3 +1,4 @@
+#include "dresskit/mesh/names.h"
 #include "dresskit/mannequin/garments.h"
 
 #include <cmath>
@@ -15,21 +16,16 @@ const std::vector<GarmentKind>& all_garment_kinds() {
   return kinds;
 }
 
-std::string to_string(GarmentKind kind) {
-  switch (kind) {
-    case GarmentKind::tshirt: return "tshirt";
-    case GarmentKind::skirt: return "skirt";
-    case GarmentKind::trousers: return "trousers";
-  }
-  return "?";
-}
+namespace {
+const NameTable<GarmentKind> kGarmentKinds = {{"tshirt", GarmentKind::tshirt},
+                                              {"t-shirt", GarmentKind::tshirt},
+                                              {"skirt", GarmentKind::skirt},
+                                              {"trousers", GarmentKind::trousers}};
+}  // namespace
 
-GarmentKind parse_garment_kind(const std::string& text) {
-  if (text == "tshirt" || text == "t-shirt") return GarmentKind::tshirt;
-  if (text == "skirt") return GarmentKind::skirt;
-  if (text == "trousers") return GarmentKind::trousers;
-  throw InputError("garment: '" + text + "' is not tshirt, skirt or trousers");
-}
+std::string to_string(GarmentKind kind) { return name_of(kind, kGarmentKinds); }
+
+GarmentKind parse_garment_kind(const std::string& text) { return parse_name(text, kGarmentKinds, "garment"); }
 
 const std::vector<std::string>& garment_part_names() {
   static const std::vector<std::string> names = {"body",     "sleeve_left", "sleeve_right",

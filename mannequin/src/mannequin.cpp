@@ -1,3 +1,4 @@
+#include "dresskit/mesh/names.h"
 #include "dresskit/mannequin/mannequin.h"
 
 #include <cmath>
@@ -18,9 +19,9 @@ const std::vector<std::string>& body_part_names() {
 }
 
 Pose parse_pose(const std::string& text) {
-  if (text == "a" || text == "a-pose" || text == "A") return Pose::a_pose;
-  if (text == "t" || text == "t-pose" || text == "T") return Pose::t_pose;
-  throw InputError("pose: '" + text + "' is not a-pose or t-pose");
+  return parse_name<Pose>(text, {{"a-pose", Pose::a_pose}, {"a", Pose::a_pose}, {"A", Pose::a_pose}, {"t-pose", Pose::t_pose},
+                           {"t", Pose::t_pose}, {"T", Pose::t_pose}},
+                    "pose");
 }
 
 void check_options(const MannequinOptions& o) {

@@ -15,6 +15,7 @@
 #include <fstream>
 #include <unordered_map>
 
+#include "dresskit/mesh/names.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "internal.h"
@@ -44,28 +45,15 @@ std::string units_for_body(double file_extent) {
   return "";
 }
 
-UpAxis parse_up_axis(const std::string& text) {
-  static const std::pair<const char*, UpAxis> names[] = {
-      {"+x", UpAxis::pos_x}, {"x", UpAxis::pos_x}, {"-x", UpAxis::neg_x}, {"+y", UpAxis::pos_y},
-      {"y", UpAxis::pos_y},  {"-y", UpAxis::neg_y}, {"+z", UpAxis::pos_z}, {"z", UpAxis::pos_z},
-      {"-z", UpAxis::neg_z}};
-  for (const auto& [name, axis] : names) {
-    if (text == name) return axis;
-  }
-  throw InputError("up axis: '" + text + "' is not one of +x, -x, +y, -y, +z, -z");
-}
+namespace {
+const NameTable<UpAxis> kUpAxes = {{"+x", UpAxis::pos_x}, {"x", UpAxis::pos_x}, {"-x", UpAxis::neg_x},
+                                   {"+y", UpAxis::pos_y}, {"y", UpAxis::pos_y}, {"-y", UpAxis::neg_y},
+                                   {"+z", UpAxis::pos_z}, {"z", UpAxis::pos_z}, {"-z", UpAxis::neg_z}};
+}  // namespace
 
-std::string to_string(UpAxis axis) {
-  switch (axis) {
-    case UpAxis::pos_x: return "+x";
-    case UpAxis::neg_x: return "-x";
-    case UpAxis::pos_y: return "+y";
-    case UpAxis::neg_y: return "-y";
-    case UpAxis::pos_z: return "+z";
-    case UpAxis::neg_z: return "-z";
-  }
-  return "?";
-}
+UpAxis parse_up_axis(const std::string& text) { return parse_name(text, kUpAxes, "up axis"); }
+
+std::string to_string(UpAxis axis) { return name_of(axis, kUpAxes); }
 
 const std::vector<std::string>& loadable_extensions() {
   static const std::vector<std::string> ext = {"obj", "ply", "off", "stl", "gltf", "glb", "fbx"};

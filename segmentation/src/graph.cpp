@@ -1,3 +1,4 @@
+#include "dresskit/mesh/names.h"
 #include "dresskit/segmentation/graph.h"
 
 #include "dresskit/mesh/union_find.h"
@@ -12,24 +13,16 @@
 
 namespace dresskit {
 
-AffinityKind parse_affinity(const std::string& text) {
-  if (text == "dihedral") return AffinityKind::dihedral;
-  if (text == "edge-length" || text == "edge_length") return AffinityKind::edge_length;
-  if (text == "cotangent") return AffinityKind::cotangent;
-  throw InputError("affinity '" + text + "': expected dihedral, edge-length or cotangent");
-}
+namespace {
+const NameTable<AffinityKind> kAffinities = {{"dihedral", AffinityKind::dihedral},
+                                             {"edge-length", AffinityKind::edge_length},
+                                             {"edge_length", AffinityKind::edge_length},
+                                             {"cotangent", AffinityKind::cotangent}};
+}  // namespace
 
-std::string to_string(AffinityKind kind) {
-  switch (kind) {
-    case AffinityKind::dihedral:
-      return "dihedral";
-    case AffinityKind::edge_length:
-      return "edge-length";
-    case AffinityKind::cotangent:
-      return "cotangent";
-  }
-  return "?";
-}
+AffinityKind parse_affinity(const std::string& text) { return parse_name(text, kAffinities, "affinity"); }
+
+std::string to_string(AffinityKind kind) { return name_of(kind, kAffinities); }
 
 namespace {
 

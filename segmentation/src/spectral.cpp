@@ -1,4 +1,5 @@
 // Spectra is included here only: the public header speaks Eigen.
+#include "dresskit/mesh/names.h"
 #include "dresskit/segmentation/spectral.h"
 
 #include <Spectra/MatOp/SparseSymShiftSolve.h>
@@ -13,15 +14,14 @@
 
 namespace dresskit {
 
-LaplacianKind parse_laplacian(const std::string& text) {
-  if (text == "normalized" || text == "normalised") return LaplacianKind::normalized;
-  if (text == "plain") return LaplacianKind::plain;
-  throw InputError("laplacian '" + text + "': expected normalized or plain");
-}
+namespace {
+const NameTable<LaplacianKind> kLaplacians = {
+    {"normalized", LaplacianKind::normalized}, {"normalised", LaplacianKind::normalized}, {"plain", LaplacianKind::plain}};
+}  // namespace
 
-std::string to_string(LaplacianKind kind) {
-  return kind == LaplacianKind::normalized ? "normalized" : "plain";
-}
+LaplacianKind parse_laplacian(const std::string& text) { return parse_name(text, kLaplacians, "laplacian"); }
+
+std::string to_string(LaplacianKind kind) { return name_of(kind, kLaplacians); }
 
 Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W,
                                             LaplacianKind kind) {

@@ -1,3 +1,4 @@
+#include "dresskit/mesh/names.h"
 #include "dresskit/thickness/heat1d.h"
 
 #include <chrono>
@@ -52,21 +53,16 @@ class ThetaStepper {
 
 }  // namespace
 
-HeatScheme parse_heat_scheme(const std::string& text) {
-  if (text == "explicit") return HeatScheme::explicit_euler;
-  if (text == "implicit") return HeatScheme::implicit_euler;
-  if (text == "crank-nicolson" || text == "cn") return HeatScheme::crank_nicolson;
-  throw InputError("unknown heat scheme '" + text + "' (known: explicit, implicit, crank-nicolson)");
-}
+namespace {
+const NameTable<HeatScheme> kHeatSchemes = {{"explicit", HeatScheme::explicit_euler},
+                                            {"implicit", HeatScheme::implicit_euler},
+                                            {"crank-nicolson", HeatScheme::crank_nicolson},
+                                            {"cn", HeatScheme::crank_nicolson}};
+}  // namespace
 
-std::string to_string(HeatScheme scheme) {
-  switch (scheme) {
-    case HeatScheme::explicit_euler: return "explicit";
-    case HeatScheme::implicit_euler: return "implicit";
-    case HeatScheme::crank_nicolson: return "crank-nicolson";
-  }
-  return "?";
-}
+HeatScheme parse_heat_scheme(const std::string& text) { return parse_name(text, kHeatSchemes, "heat scheme"); }
+
+std::string to_string(HeatScheme scheme) { return name_of(scheme, kHeatSchemes); }
 
 void solve_tridiagonal(const Eigen::VectorXd& sub, const Eigen::VectorXd& diag,
                        const Eigen::VectorXd& sup, Eigen::VectorXd& rhs) {
