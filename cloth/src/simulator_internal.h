@@ -1,5 +1,5 @@
 #pragma once
-// Helpers shared by the simulator's translation units (simulator.cpp, integrators.cpp).
+// Helpers shared by the simulator's translation units (simulator*.cpp, the integrators' files).
 #include <Eigen/Core>
 #include <Eigen/Sparse>
 #include <vector>
