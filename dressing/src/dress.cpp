@@ -15,7 +15,6 @@
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/triangle_bvh.h"
-#include "dresskit/mesh/arap.h"
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/inside.h"
@@ -223,14 +222,26 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   // Load.
   {
     Stage stage(result, options, "load");
-    auto load = [](const MeshFile& f) { return f.mesh ? *f.mesh : load_mesh(f.path, f.load); };
+    auto load = [](const MeshFile& f) {
+      if (!f.mesh) return load_mesh(f.path, f.load);
+      validate_mesh(*f.mesh, f.path);
+      const Eigen::Index names = static_cast<Eigen::Index>(f.mesh->label_names.size());
+      if (f.mesh->labels.size() > 0 &&
+          (f.mesh->labels.size() != f.mesh->num_vertices() || f.mesh->labels.minCoeff() < -1 ||
+           f.mesh->labels.maxCoeff() >= names))
+        throw InputError(f.path + ": labels must be one per vertex, each -1 or the index of one of its " +
+                         std::to_string(names) + " part names");
+      return *f.mesh;
+    };
     result.body = load(body_file);
     for (const GarmentFile& g : garment_files) {
       DressedGarment d;
-      d.name = stem(g.file.path);
-      d.file = g.file;
-      d.file.mesh.reset();
       d.in_memory = g.file.mesh.has_value();
+      d.name = d.in_memory ? g.file.path : stem(g.file.path);  // a mesh in memory keeps the name given
+      d.file = g.file;  // with a mesh given in memory: kept, the output's vertex order is its
+      for (const DressedGarment& other : result.garments)
+        if (other.name == d.name)
+          throw InputError(g.file.path + ": another garment is called " + d.name + "; outputs are named by it");
       d.fabric = g.fabric.empty() ? "gray-interlock" : g.fabric;
       d.mesh = load(g.file);
       result.garments.push_back(std::move(d));
@@ -418,10 +429,11 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                 " (scale " + number(scale) + ", " + std::to_string(p.matching.matches.size()) + " parts matched, " +
                 p.global_method + ")";
     }
-    for (DressedGarment& g : result.garments) {
+    for (std::size_t k = 0; k < result.garments.size(); ++k) {
+      DressedGarment& g = result.garments[k];
       g.crossings_placed = g.crossings_fitted = count_intersections(g.placed, g.mesh.F);
       if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
-        untangle(g, *body_distance, options.placement.clearance);
+        untangle(result.garments, k, *body_distance, options.placement.clearance);
         report += "; " + g.name + ": crossing itself " + std::to_string(g.crossings_fitted) + " times as fitted, " +
                   std::to_string(g.crossings_placed) + " with those regions rebuilt (" +
                   std::to_string(g.crossings_authored) + " as authored)";
@@ -452,7 +464,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   {
     Stage stage(result, options, "settle");
     if (!options.settle) {
-      stage.done(false, "not asked for (--no-settle)");
+      stage.done(false, "not asked for");
     } else {
       double duration = 1.0;
       SimulationOptions o = simulation_options(options.quality, duration);
@@ -487,15 +499,12 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       result.settled = true;
       for (std::size_t k = 0; k < result.garments.size(); ++k)
         result.garments[k].dressed = sim.positions().middleRows(first[k], first[k + 1] - first[k]);
-      const int all = count_intersections(sim.positions(), model.faces);
-      int own = 0;
-      for (const DressedGarment& g : result.garments) own += count_intersections(g.dressed, g.mesh.F);
-      result.layer_crossings = std::max(0, all - own);
       stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim.time()) +
                            " s simulated, " + result.settle.stopped_reason + held);
     }
   }
 
+  result.layer_crossings = crossings_between(result.garments, &DressedGarment::dressed);
   for (std::size_t k = 0; k < result.garments.size(); ++k) {
     DressedGarment& g = result.garments[k];
     g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);

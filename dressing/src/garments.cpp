@@ -6,6 +6,7 @@
 
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/mesh/arap.h"
+#include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
 
 namespace dresskit::dressing_detail {
@@ -18,7 +19,8 @@ constexpr double kHeld = 100.0;
 /// An as-rigid-as-possible fit of a garment's rest shape to its placed positions, vertices of
 /// weight 0 free, the others held, that stays out of the body: with `push`, free vertices the fit
 /// takes into the body are first held `clearance` outside it along its normal; then any still
-/// inside are held where placement put them (outside it). Returns the positions and how many
+/// inside are held at their positions in g.placed (outside it: placement pushed them out, and a
+/// fit kept earlier left none deep). Returns the positions and how many
 /// vertices lie deeper than 5 mm inside the body.
 std::pair<Eigen::MatrixX3d, int> fit_outside(const DressedGarment& g, const Eigen::MatrixX3d& rest, Eigen::VectorXd weight,
                                              const MeshDistance& body, double clearance, bool push) {
@@ -57,14 +59,31 @@ TriangleMesh rest_shape(const DressedGarment& g) {
   return rest;
 }
 
+int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at) {
+  if (garments.size() < 2) return 0;
+  TriangleMesh all = empty_mesh();
+  int own = 0;
+  for (const DressedGarment& g : garments) {
+    TriangleMesh m;
+    m.V = g.*at;
+    m.F = g.mesh.F;
+    own += count_intersections(m.V, m.F);
+    append_mesh(all, m, "");
+  }
+  return std::max(0, count_intersections(all.V, all.F) - own);
+}
+
 /// Where placement made a garment cross itself (bending parts apart and together by their own
 /// transforms), the crossing regions are rebuilt from the garment's rest shape, which keeps their
 /// edges' lengths: the vertices of each crossing and their neighbours `rings` deep are left free
 /// in fit_outside (with and without pushing), the rest held. Wider regions in turn until the
 /// garment crosses itself no more than as authored or two widths in a row do not help; a fit is
-/// kept only where it lowers the crossings and takes no vertex deep into the body.
-void untangle(DressedGarment& g, const MeshDistance& body, double clearance) {
+/// kept only where it lowers the crossings, adds none with the other garments and takes no vertex
+/// deep into the body.
+void untangle(std::vector<DressedGarment>& garments, std::size_t k, const MeshDistance& body, double clearance) {
+  DressedGarment& g = garments[k];
   const Eigen::MatrixX3d rest = rest_shape(g).V;
+  const int between = crossings_between(garments, &DressedGarment::placed);
   const std::vector<std::vector<int>> neighbours = vertex_neighbours(g.mesh.F, g.mesh.num_vertices());
   int fruitless = 0;
   for (int rings : {2, 4, 8, 12}) {
@@ -83,10 +102,21 @@ void untangle(DressedGarment& g, const MeshDistance& body, double clearance) {
     }
     const int before = g.crossings_placed;
     for (bool push : {true, false}) {
-      const auto [x, deep] = fit_outside(g, rest, weight, body, clearance, push);
-      const int crossings = deep > 0 ? before : count_intersections(x, g.mesh.F);
+      std::pair<Eigen::MatrixX3d, int> fit;
+      try {
+        fit = fit_outside(g, rest, weight, body, clearance, push);
+      } catch (const InputError&) {  // the fitting system could not be factored: no fit
+        continue;
+      }
+      if (fit.second > 0 || !fit.first.allFinite()) continue;
+      const int crossings = count_intersections(fit.first, g.mesh.F);
       if (crossings >= g.crossings_placed) continue;
-      g.placed = x;
+      const Eigen::MatrixX3d placed = g.placed;
+      g.placed = fit.first;
+      if (crossings_between(garments, &DressedGarment::placed) > between) {
+        g.placed = placed;
+        continue;
+      }
       g.crossings_placed = crossings;
     }
     if (g.crossings_placed <= g.crossings_authored) return;

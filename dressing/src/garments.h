@@ -12,9 +12,12 @@ namespace dresskit::dressing_detail {
 /// The garment's rest shape for settling: as made, graded by the placement's size change.
 TriangleMesh rest_shape(const DressedGarment& g);
 
-/// Rebuilds the regions where the placed garment crosses itself more often than as authored
-/// (garments.cpp); updates placed and crossings_placed.
-void untangle(DressedGarment& g, const MeshDistance& body, double clearance);
+/// Rebuilds the regions where the placed garment k crosses itself more often than as authored
+/// (garments.cpp); updates its placed positions and crossings_placed.
+void untangle(std::vector<DressedGarment>& garments, std::size_t k, const MeshDistance& body, double clearance);
+
+/// Edge–triangle crossings between different garments at their positions `at` (placed or dressed).
+int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at);
 
 /// Part names of a garment's legs (trouser legs, skirt parts) and of its sleeves.
 bool names_legs(const std::string& part);

@@ -14,18 +14,13 @@ using json = nlohmann::json;
 
 namespace {
 
-/// Positions in the file's own vertex order, units and axes: the mesh's rows mapped back through
-/// source_vertex (a vertex the toolkit dropped keeps the file's position), faces likewise. A mesh
-/// given in memory keeps its own order and metres.
+/// Positions in the file's own vertex order, units and axes (a mesh given in memory: its order, in
+/// metres): the mesh's rows mapped back through source_vertex (a vertex the toolkit dropped keeps
+/// the given position), faces likewise.
 TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
   TriangleMesh result;
-  if (g.in_memory) {
-    result.V = V;
-    result.F = g.mesh.F;
-    return result;
-  }
   const TriangleMesh& mesh = g.mesh;
-  const TriangleMesh original = load_mesh(g.file.path, g.file.load);
+  const TriangleMesh original = g.in_memory ? *g.file.mesh : load_mesh(g.file.path, g.file.load);
   int count = original.num_vertices();
   for (Eigen::Index i = 0; i < mesh.source_vertex.size(); ++i) count = std::max(count, mesh.source_vertex(i) + 1);
   Eigen::MatrixX3d out = Eigen::MatrixX3d::Zero(count, 3);
@@ -39,7 +34,7 @@ TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
     to_file[static_cast<std::size_t>(i)] = s;
     if (s >= 0 && s < count) out.row(s) = V.row(i);
   }
-  result.V = to_file_frame(out, g.file.load);
+  result.V = g.in_memory ? out : to_file_frame(out, g.file.load);
   result.F.resize(mesh.num_faces(), 3);
   int kept = 0;
   for (int f = 0; f < mesh.num_faces(); ++f) {
@@ -113,8 +108,9 @@ json report_json(const DressResult& r) {
   json gaps = json::array();
   for (std::size_t k = 0; k < r.layer_gap_median.size(); ++k)
     gaps.push_back({{"inner", r.garments[k].name}, {"outer", r.garments[k + 1].name},
-                    {"overlapping_vertices", r.layer_gap_vertices[k]}, {"p5_mm", 1e3 * r.layer_gap_p5[k]},
-                    {"median_mm", 1e3 * r.layer_gap_median[k]},
+                    {"overlapping_vertices", r.layer_gap_vertices[k]},
+                    {"p5_mm", r.layer_gap_vertices[k] > 0 ? json(1e3 * r.layer_gap_p5[k]) : json(nullptr)},
+                    {"median_mm", r.layer_gap_vertices[k] > 0 ? json(1e3 * r.layer_gap_median[k]) : json(nullptr)},
                     {"asked_mm", 1e3 * r.layer_gap_asked[k]}});
   json report = {
       {"body", {{"path", r.body_file.path}, {"units", r.body_file.load.units.name},

@@ -13,6 +13,8 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/inside.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/mannequin/garments.h"
+#include "dresskit/mannequin/mannequin.h"
 #include "dresskit/mesh/topology.h"
 #include "test_data.h"
 
@@ -272,4 +274,39 @@ TEST(Dress, BadInputNamesTheFileAndWhatIsWrong) {
   EXPECT_NE(message(in_units(body_path("mh_woman_young_average"), "dm"), silk).find("moon-silk"), std::string::npos);
   EXPECT_NE(message(in_units("/nonexistent/body.obj", "dm"), garment).find("/nonexistent/body.obj"),
             std::string::npos);
+}
+
+// Meshes given in memory are checked like files (a broken mesh, labels out of range) and keep the
+// names given, which must differ.
+TEST(Dress, MeshesGivenInMemoryAreCheckedAndNamedAsGiven) {
+  MannequinOptions mo;
+  mo.edge_length = 0.05;
+  const BodyShape shape(mo);
+  GarmentOptions go;
+  go.edge_length = mo.edge_length;
+  const TriangleMesh body = make_mannequin(shape), shirt = make_garment(shape, GarmentKind::tshirt, go);
+  auto message = [&](const MeshFile& b, const std::vector<GarmentFile>& g) {
+    try {
+      dress(b, g);
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  TriangleMesh bad_labels = shirt;
+  bad_labels.labels(0) = static_cast<int>(bad_labels.label_names.size());
+  EXPECT_NE(message(MeshFile::given("body", body), {{MeshFile::given("odd.shirt", bad_labels), ""}}).find("odd.shirt: labels"),
+            std::string::npos);
+  EXPECT_NE(message(MeshFile::given("body", TriangleMesh{}), {{MeshFile::given("shirt", shirt), ""}}).find("body"),
+            std::string::npos);
+  EXPECT_NE(message(MeshFile::given("body", body),
+                    {{MeshFile::given("shirt", shirt), ""}, {MeshFile::given("shirt", shirt), ""}})
+                .find("another garment is called shirt"),
+            std::string::npos);
+  DressOptions o;
+  o.settle = false;
+  const DressResult r = dress(MeshFile::given("body", body), {{MeshFile::given("my.shirt", shirt), ""}}, o);
+  EXPECT_EQ(r.garments[0].name, "my.shirt");
+  EXPECT_FALSE(stage(r, "placement").ran);  // made on this body
+  EXPECT_EQ(r.garments[0].placed, shirt.V);
 }

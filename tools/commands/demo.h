@@ -14,7 +14,8 @@ struct DemoCommand : Command {
   std::string dir, pose = "a-pose", quality = "balanced";
   MannequinOptions body;
   GarmentOptions garments;
-  double seconds = 1.0;      ///< simulated settling [s]; 0: not settled
+  double seconds = 0.0;      ///< simulated settling at most [s]; 0: the quality's
+  bool no_settle = false;
   double over_ease = 0.008;  ///< the t-shirt's ease beyond the trousers', so that they start apart [m]
 
   void add_to(CLI::App& app) override;

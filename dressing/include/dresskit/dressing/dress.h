@@ -87,9 +87,9 @@ struct DressPart {
 };
 
 struct DressedGarment {
-  std::string name;    ///< the file's stem
+  std::string name;    ///< the file's stem, or the name of a mesh given in memory; unique
   std::string fabric;
-  MeshFile file;       ///< as given (without its in-memory mesh)
+  MeshFile file;       ///< as given (a mesh given in memory kept: outputs follow its vertex order)
   bool in_memory = false;  ///< given in memory rather than read from file.path
   TriangleMesh mesh;   ///< as loaded (and cleaned) [m]: its rest shape; labels = its parts
   std::vector<DressPart> parts;
@@ -130,7 +130,8 @@ struct DressResult {
 /// Dresses the body in the garments, given inside to outside. Throws InputError naming the file
 /// and the problem: an unreadable file, a body of implausible height for its units (with the units
 /// that would fit), a mesh with no arms or legs given as the body, a garment that matches no body
-/// part or that the placement could not fit, an unknown fabric.
+/// part or that the placement could not fit, an unknown fabric, two garments of one name, a mesh
+/// given in memory that is broken (empty, indices out of range, non-finite, labels out of range).
 DressResult dress(const MeshFile& body, const std::vector<GarmentFile>& garments, const DressOptions& options = {});
 
 }  // namespace dresskit
