@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
 
   SimulationOptions ref = base;
   ref.dt = quick ? 1.0 / 1200 : 1.0 / 4800;
-  ref.cg_tolerance = 1e-10;
+  ref.linear.cg_tolerance = 1e-10;
   Run reference;
   std::ifstream cached(reference_path, std::ios::binary);
   if (!reference_path.empty() && cached) {
@@ -141,19 +141,19 @@ int main(int argc, char** argv) {
          "error,stable\n";
   auto record = [&](const SimulationOptions& o, const std::string& label) {
     std::string name = to_string(o.integrator);
-    if (o.integrator == Integrator::projective && o.time_scheme != TimeScheme::backward_euler)
-      name += "-" + to_string(o.time_scheme);
-    if (o.integrator == Integrator::projective && o.projective_lbfgs_history > 0)
-      name += "-lbfgs" + std::to_string(o.projective_lbfgs_history);
-    if (o.integrator == Integrator::projective && o.projective_adaptive_weights) name += "-aw";
+    if (o.integrator == Integrator::projective && o.projective.time_scheme != TimeScheme::backward_euler)
+      name += "-" + to_string(o.projective.time_scheme);
+    if (o.integrator == Integrator::projective && o.projective.lbfgs_history > 0)
+      name += "-lbfgs" + std::to_string(o.projective.lbfgs_history);
+    if (o.integrator == Integrator::projective && o.projective.adaptive_weights) name += "-aw";
 
-    if (o.integrator == Integrator::projective && !o.projective_single_precision) name += "-double";
+    if (o.integrator == Integrator::projective && !o.projective.single_precision) name += "-double";
     if (!only.empty() && name.rfind(only, 0) != 0) return;
     const Run r = simulate(model, pins, o);
     const double error =
         r.ok ? std::sqrt((r.x - reference.x).rowwise().squaredNorm().mean()) / 1.0 : NAN;
     const double ms_per_frame = r.wall / 60.0 * 1e3, cpu_ms_per_frame = r.cpu / 60.0 * 1e3;
-    csv << name << "," << label << "," << o.dt << "," << o.cg_tolerance << "," << r.wall << ","
+    csv << name << "," << label << "," << o.dt << "," << o.linear.cg_tolerance << "," << r.wall << ","
         << ms_per_frame << "," << cpu_ms_per_frame << "," << error << "," << r.ok << "\n";
     csv.flush();
     std::printf("%-17s %-22s %8.2f ms/frame (CPU %8.2f)  error %.2e %s\n", name.c_str(),
@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
       if (quick && tol == 1e-5) continue;
       SimulationOptions o = base;
       o.dt = 1.0 / inv;
-      o.cg_tolerance = tol;
+      o.linear.cg_tolerance = tol;
       char label[64];
       std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, tol);
       record(o, label);
@@ -183,11 +183,11 @@ int main(int argc, char** argv) {
     SimulationOptions o = base;
     o.integrator = Integrator::newton;
     o.dt = 1.0 / inv;
-    o.cg_tolerance = 1e-3;
-    o.newton_tolerance = 1e-5;
-    o.newton_iterations = 4;
+    o.linear.cg_tolerance = 1e-3;
+    o.iteration_tolerance = 1e-5;
+    o.newton.iterations = 4;
     char label[64];
-    std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, o.cg_tolerance);
+    std::snprintf(label, sizeof label, "dt 1/%d tol %.0e", inv, o.linear.cg_tolerance);
     record(o, label);
   }
   for (int adaptive : adaptive_weights)
@@ -197,18 +197,18 @@ int main(int argc, char** argv) {
           for (int iterations : iteration_counts) {
             SimulationOptions o = base;
             o.integrator = Integrator::projective;
-            o.time_scheme = scheme;
+            o.projective.time_scheme = scheme;
             o.dt = 1.0 / inv;
-            o.projective_iterations = iterations;
-            o.projective_lbfgs_history = history;
-            o.projective_adaptive_weights = adaptive != 0;
-            o.newton_tolerance = 1e-7;
+            o.projective.iterations = iterations;
+            o.projective.lbfgs_history = history;
+            o.projective.adaptive_weights = adaptive != 0;
+            o.iteration_tolerance = 1e-7;
             char label[64];
             std::snprintf(label, sizeof label, "dt 1/%d it %d", inv, iterations);
             record(o, label);
             if (scheme == TimeScheme::backward_euler && inv == 60 && history == 0 &&
                 adaptive == 0) {  // the double-precision solve, for comparison
-              o.projective_single_precision = false;
+              o.projective.single_precision = false;
               record(o, label);
             }
           }

@@ -118,10 +118,10 @@ int run(int argc, char** argv) {
     SimulationOptions o = scene.simulation;
     o.integrator = s.integrator;
     o.dt = s.dt;
-    if (s.iterations > 0) o.projective_iterations = s.iterations;
-    o.projective_collisions = s.contacts_inside;
+    if (s.iterations > 0) o.projective.iterations = s.iterations;
+    o.projective.collisions = s.contacts_inside;
     o.self_collision = s.cloth_collisions;
-    o.projective_adaptive_weights = s.adaptive_weights;
+    o.projective.adaptive_weights = s.adaptive_weights;
     ClothSimulator sim(scene.model, o);
     sim.set_pinned(scene.pins);
     std::string stopped = "duration reached";

@@ -59,10 +59,10 @@ int main(int argc, char** argv) {
       for (double dt : dts) {
         SimulationOptions o;
         o.integrator = integrator;
-        o.time_scheme = variant.scheme;
-        o.projective_adaptive_weights = variant.adaptive_weights;
+        o.projective.time_scheme = variant.scheme;
+        o.projective.adaptive_weights = variant.adaptive_weights;
         o.dt = dt;
-        o.cg_max_iterations = 2000;
+        o.linear.cg_max_iterations = 2000;
         o.gravity.setZero();
         ClothSimulator sim(model, o);
         sim.set_pinned({n * (n - 1), n * n - 1});

@@ -142,7 +142,7 @@ void ClothSimulator::assemble_system(bool with_spring_damping, Eigen::VectorXd* 
 // Solves system_ · sol = rhs with the chosen solver (CG starts from guess).
 bool ClothSimulator::solve_system(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess,
                                   Eigen::VectorXd& sol, StepResult& r) {
-  if (options_.linear_solver == LinearSolver::ldlt) {
+  if (options_.linear.solver == LinearSolver::ldlt) {
     Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(system_);
     if (solver.info() != Eigen::Success) {
       r.ok = false;
@@ -153,14 +153,14 @@ bool ClothSimulator::solve_system(const Eigen::VectorXd& rhs, const Eigen::Vecto
     return true;
   }
   Eigen::ConjugateGradient<Eigen::SparseMatrix<double>, Eigen::Lower | Eigen::Upper> solver;
-  solver.setTolerance(options_.cg_tolerance);
-  solver.setMaxIterations(options_.cg_max_iterations);
+  solver.setTolerance(options_.linear.cg_tolerance);
+  solver.setMaxIterations(options_.linear.cg_max_iterations);
   solver.compute(system_);
   sol = solver.solveWithGuess(rhs, guess);
   r.solver_iterations += static_cast<int>(solver.iterations());
   if (solver.info() != Eigen::Success) {
     r.ok = false;
-    r.failure = "conjugate gradient did not converge in " + std::to_string(options_.cg_max_iterations) + " iterations";
+    r.failure = "conjugate gradient did not converge in " + std::to_string(options_.linear.cg_max_iterations) + " iterations";
     return false;
   }
   return true;

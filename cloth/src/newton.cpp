@@ -50,7 +50,7 @@ void ClothSimulator::step_newton(StepResult& r) {
     if (!pinned_[i]) x_.row(i) += h * v_.row(i);
   double G = incremental_potential(x_, x0, v0);
   const SpringSet& s = model_.springs;
-  for (int it = 0; it < options_.newton_iterations; ++it) {
+  for (int it = 0; it < options_.newton.iterations; ++it) {
     // −h² ∇G: h² × (spring and gravity forces) − M (x − x0 − h v0) − h c M (x − x0 − h w).
     Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(n, 3);
     for (int k = 0; k < s.size(); ++k) {
@@ -85,7 +85,7 @@ void ClothSimulator::step_newton(StepResult& r) {
     const double moved = (alpha * step).rowwise().norm().maxCoeff();
     G = G_new;
     ++r.newton_iterations;
-    if (moved < options_.newton_tolerance) break;
+    if (moved < options_.iteration_tolerance) break;
   }
   v_ = (x_ - x0) / h;
   for (int i = 0; i < n; ++i)

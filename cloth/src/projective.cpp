@@ -10,7 +10,7 @@
 // w (with w = k_knee the error bench's error grew with the iteration count). Spring damping is not
 // modelled (as in the Newton integrator).
 //
-// BDF2 (options.time_scheme): x_{n+1} = x̂ + h' v_{n+1} and v_{n+1} = v̂ + h' M⁻¹ f(x_{n+1}) with
+// BDF2 (options.projective.time_scheme): x_{n+1} = x̂ + h' v_{n+1} and v_{n+1} = v̂ + h' M⁻¹ f(x_{n+1}) with
 // h' = 2h/3, x̂ = (4 x_n − x_{n−1})/3, v̂ = (4 v_n − v_{n−1})/3 — the same minimisation as backward
 // Euler with the inertia target x̂ + h' v̂ and the step h' (air damping acts on (x − x̂)/h'). The
 // first step (and the first after a change of step size or set_state) is backward Euler: BDF2
@@ -22,7 +22,7 @@
 // Speed (docs/results.md, bench_cloth_error): the global step's three triangular solves dominate;
 // they run on an interleaved copy of the factor (interleaved_cholesky.h), by default in single
 // precision for the change of the iterate against a double-precision residual. The local step reads
-// flat arrays. Collisions (options.projective_collisions): after every global step particles inside
+// flat arrays. Collisions (options.projective.collisions): after every global step particles inside
 // a collider's margin are pushed out to it along the normal, so the springs settle around the
 // contacts within the step; the contacts of the last pass then lose their inward speed and get
 // friction (as collide()).
@@ -74,7 +74,7 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
     }
   }
   if (!weights && projective_ && projective_->h == h && projective_->pinned == pinned_ &&
-      projective_->single_precision == options_.projective_single_precision)
+      projective_->single_precision == options_.projective.single_precision)
     return;
   // New adaptive weights for the same step and pins: the matrices' values change in place through
   // each spring's entries, and the factor keeps its ordering and symbolic analysis (building the
@@ -82,7 +82,7 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   // bench's cloth).
   if (weights && projective_ && projective_->adaptive && projective_->ok && projective_->h == h &&
       projective_->pinned == pinned_ &&
-      projective_->single_precision == options_.projective_single_precision &&
+      projective_->single_precision == options_.projective.single_precision &&
       projective_->same_layout) {
     Projective& P = *projective_;
     double* a = P.Acol.valuePtr();
@@ -117,7 +117,7 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   auto p = std::make_shared<Projective>();
   p->h = h;
   p->pinned = pinned_;
-  p->single_precision = options_.projective_single_precision;
+  p->single_precision = options_.projective.single_precision;
   p->adaptive = weights != nullptr;
   p->inertia = model_.mass * (1.0 / (h * h) + c / h);
   std::vector<Eigen::Triplet<double>> a, b;
@@ -242,7 +242,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
   }
   for (int v : P.pinned_list) fixed.row(v) = x0.row(v), X.row(v) = x0.row(v);
 
-  if (options_.projective_lbfgs_history > 0) return projective_lbfgs(target, air_base, wind, x0, X);
+  if (options_.projective.lbfgs_history > 0) return projective_lbfgs(target, air_base, wind, x0, X);
   RowX3 &rhs = P.rhs, &previous = P.previous;
   // Contacts inside the iterations (projective_collisions). A particle in contact carries a normal
   // force f n in the global step's right-hand side. After each global step its penetration p below
@@ -256,7 +256,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
   // pass after the step to push them back out (on the cloth-onto-sphere scene at 1/60 s that had
   // sunk the top of the cloth 1.8 cm each step, and the push back stretched the strain-limited
   // springs around the sphere's top by 6 %).
-  const bool in_contact = options_.projective_collisions && !options_.colliders.empty();
+  const bool in_contact = options_.projective.collisions && !options_.colliders.empty();
   ContactForces& cf = contact_forces_;
   if (in_contact && cf.force.size() != static_cast<std::size_t>(n)) {
     cf.force.assign(static_cast<std::size_t>(n), 0.0);
@@ -313,7 +313,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
   const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
   const double* rest = model_.rest_positions.data();
   int iterations = 0;
-  for (int it = 0; it < options_.projective_iterations && fused; ++it) {
+  for (int it = 0; it < options_.projective.iterations && fused; ++it) {
     double* R = rhs.data();
     const double* x = X.data();
     const double* F = fixed.data();
@@ -338,9 +338,9 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     if (in_contact) contact_pass(X, contacts);
     const double moved2 = largest_move2(X.data(), previous.data(), n);
     iterations = it + 1;
-    if (std::sqrt(moved2) < options_.newton_tolerance) break;
+    if (std::sqrt(moved2) < options_.iteration_tolerance) break;
   }
-  for (int it = 0; it < options_.projective_iterations && !fused; ++it) {
+  for (int it = 0; it < options_.projective.iterations && !fused; ++it) {
     rhs = fixed;
     double* R = rhs.data();
     const double* x = X.data();
@@ -388,7 +388,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     const double moved2 = largest_move2(X.data(), previous.data(), n);
     const double moved = std::sqrt(moved2);
     iterations = it + 1;
-    if (moved < options_.newton_tolerance) break;
+    if (moved < options_.iteration_tolerance) break;
   }
   return iterations;
 }
@@ -396,7 +396,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
 void ClothSimulator::step_projective(StepResult& r) {
   const double dt = dt_;
   const int n = static_cast<int>(x_.rows());
-  const TimeScheme scheme = options_.time_scheme;
+  const TimeScheme scheme = options_.projective.time_scheme;
   // BDF2's history: a completed step since the last try makes its start the previous state.
   if (history_.t_start != time_) {
     if (history_.t_start >= 0.0) {
@@ -420,7 +420,7 @@ void ClothSimulator::step_projective(StepResult& r) {
                    : scheme == TimeScheme::midpoint ? 0.5 * dt
                    : scheme == TimeScheme::tr_bdf2  ? tr_h
                                                     : dt;
-  if (options_.projective_adaptive_weights) {
+  if (options_.projective.adaptive_weights) {
     // Each stretch spring's weight is the law's tangent stiffness a little beyond its strain (the
     // iterations contract while the spring's stiffness stays below twice its weight): far below
     // the one weight for all (the tangent just below the knee), which is 10–100 times the

@@ -86,14 +86,14 @@ int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
     for (int v : P.pinned_list) g.row(v).setZero();
     return energy;
   };
-  const int m = options_.projective_lbfgs_history;
+  const int m = options_.projective.lbfgs_history;
   std::vector<RowX3> S(static_cast<std::size_t>(m)), Y(static_cast<std::size_t>(m));
   std::vector<double> inv_sy(static_cast<std::size_t>(m)), alpha(static_cast<std::size_t>(m));
   int stored = 0, newest = -1;
   RowX3 g(n, 3), g_new(n, 3), p(n, 3), X_new(n, 3);
   double G = energy_gradient(X, g);
   int iterations = 0;
-  for (int it = 0; it < options_.projective_iterations; ++it) {
+  for (int it = 0; it < options_.projective.iterations; ++it) {
     // Two-loop recursion: p = −H ∇G with H the L-BFGS inverse Hessian around A⁻¹.
     p = -g;
     for (int k = 0; k < stored; ++k) {
@@ -146,7 +146,7 @@ int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
     X.swap(X_new);
     g.swap(g_new);
     G = G_new;
-    if (moved < options_.newton_tolerance) break;
+    if (moved < options_.iteration_tolerance) break;
   }
   return iterations;
 }

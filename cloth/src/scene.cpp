@@ -539,8 +539,8 @@ ClothScene load_cloth_scene(const std::string& path) {
     SimulationOptions& o = scene.simulation;
     if (s.has("integrator")) o.integrator = parse_integrator(s.text("integrator", ""));
     const std::string solver = s.text("linear_solver", "cg");
-    if (solver == "cg") o.linear_solver = LinearSolver::conjugate_gradient;
-    else if (solver == "ldlt") o.linear_solver = LinearSolver::ldlt;
+    if (solver == "cg") o.linear.solver = LinearSolver::conjugate_gradient;
+    else if (solver == "ldlt") o.linear.solver = LinearSolver::ldlt;
     else s.fail("'" + solver + "' is not cg or ldlt", "linear_solver");
     o.dt = s.number("dt", o.dt, 1e-7, 1.0);
     if (!(o.dt > 0)) s.fail("must be positive", "dt");
@@ -561,31 +561,31 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.gust_amplitude = s.number("gust_amplitude", 0.0, 0.0, 100.0);
     o.gust_frequency = s.number("gust_frequency", 0.0, 0.0, 1e4);
     o.collision_margin = s.number("collision_margin", o.collision_margin, 0.0, 1.0) * scale;
-    o.cg_tolerance = s.number("cg_tolerance", o.cg_tolerance, 1e-14, 0.1);
+    o.linear.cg_tolerance = s.number("cg_tolerance", o.linear.cg_tolerance, 1e-14, 0.1);
     o.adaptive = s.boolean("adaptive", o.adaptive);
     o.contact_travel = s.number("contact_travel", o.contact_travel, 0.0, 100.0);
-    o.newton_iterations = static_cast<int>(s.number("newton_iterations", o.newton_iterations, 1, 1000));
-    o.newton_tolerance = s.number("newton_tolerance", o.newton_tolerance, 1e-15, 1.0);
+    o.newton.iterations = static_cast<int>(s.number("newton_iterations", o.newton.iterations, 1, 1000));
+    o.iteration_tolerance = s.number("newton_tolerance", o.iteration_tolerance, 1e-15, 1.0);
     o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
     o.layer_order_guard = s.boolean("layer_order_guard", o.layer_order_guard);
-    o.projective_iterations = static_cast<int>(s.number("projective_iterations", o.projective_iterations, 1, 10000));
+    o.projective.iterations = static_cast<int>(s.number("projective_iterations", o.projective.iterations, 1, 10000));
     o.self_collision = s.boolean("self_collision", o.self_collision);
     o.self_collision_options.thickness =
         s.number("cloth_thickness", o.self_collision_options.thickness / scale, 1e-9, 1.0) * scale;
     o.self_collision_options.friction = s.number("cloth_friction", o.self_collision_options.friction, 0.0, 10.0);
     o.seam_tolerance = s.number("seam_tolerance", o.seam_tolerance / scale, 1e-9, 1.0) * scale;
     scene.weld_seams = s.boolean("weld_seams", scene.weld_seams);
-    const std::string scheme = s.text("time_scheme", to_string(o.time_scheme));
+    const std::string scheme = s.text("time_scheme", to_string(o.projective.time_scheme));
     try {
-      o.time_scheme = parse_time_scheme(scheme);
+      o.projective.time_scheme = parse_time_scheme(scheme);
     } catch (const InputError&) {
       s.fail("'" + scheme + "' is not backward_euler, bdf2, midpoint or tr_bdf2", "time_scheme");
     }
-    o.projective_lbfgs_history =
-        static_cast<int>(s.number("projective_lbfgs_history", o.projective_lbfgs_history, 0, 100));
-    o.projective_collisions = s.boolean("projective_collisions", o.projective_collisions);
-    o.projective_adaptive_weights = s.boolean("projective_adaptive_weights", o.projective_adaptive_weights);
+    o.projective.lbfgs_history =
+        static_cast<int>(s.number("projective_lbfgs_history", o.projective.lbfgs_history, 0, 100));
+    o.projective.collisions = s.boolean("projective_collisions", o.projective.collisions);
+    o.projective.adaptive_weights = s.boolean("projective_adaptive_weights", o.projective.adaptive_weights);
   }
   check_options(scene.simulation);
   return scene;

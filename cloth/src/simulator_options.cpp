@@ -39,7 +39,7 @@ void check_options(const SimulationOptions& o) {
   need(o.strain_limit_iterations > 0, "strain_limit_iterations: must be positive");
   need(std::isfinite(o.strain_limit_tolerance) && o.strain_limit_tolerance > 0.0,
        "strain_limit_tolerance: must be positive");
-  need(std::isfinite(o.cg_tolerance) && o.cg_tolerance > 0.0, "cg_tolerance: must be positive");
+  need(std::isfinite(o.linear.cg_tolerance) && o.linear.cg_tolerance > 0.0, "cg_tolerance: must be positive");
   need(o.wind.allFinite() && std::isfinite(o.gust_amplitude) && std::isfinite(o.gust_frequency),
        "wind: must be finite");
   need(std::isfinite(o.collision_margin) && o.collision_margin >= 0.0, "collision_margin: must be ≥ 0");
@@ -49,11 +49,11 @@ void check_options(const SimulationOptions& o) {
     need(std::isfinite(c.static_friction), "collider static_friction: must be finite");
     need(std::isfinite(c.penalty) && c.penalty >= 0.0, "collider penalty: must be ≥ 0");
   }
-  need(o.cg_max_iterations > 0, "cg_max_iterations: must be positive");
-  need(o.newton_iterations > 0, "newton_iterations: must be positive");
-  need(o.projective_iterations > 0, "projective_iterations: must be positive");
-  need(o.projective_lbfgs_history >= 0, "projective_lbfgs_history: must be ≥ 0");
-  need(std::isfinite(o.newton_tolerance) && o.newton_tolerance > 0.0, "newton_tolerance: must be positive");
+  need(o.linear.cg_max_iterations > 0, "cg_max_iterations: must be positive");
+  need(o.newton.iterations > 0, "newton_iterations: must be positive");
+  need(o.projective.iterations > 0, "projective_iterations: must be positive");
+  need(o.projective.lbfgs_history >= 0, "projective_lbfgs_history: must be ≥ 0");
+  need(std::isfinite(o.iteration_tolerance) && o.iteration_tolerance > 0.0, "newton_tolerance: must be positive");
   need(std::isfinite(o.dt_min) && o.dt_min > 0.0 && o.dt_min <= o.dt, "dt_min: must be positive and at most dt");
   need(std::isfinite(o.max_strain_change) && o.max_strain_change > 0.0, "max_strain_change: must be positive");
   const SelfCollisionOptions& sc = o.self_collision_options;

@@ -155,7 +155,7 @@ SimulationOptions simulation_options(DressQuality q, double& duration) {
     case DressQuality::balanced: duration = 1.0; break;
     case DressQuality::accurate:
       o.dt = 1.0 / 240.0;
-      o.projective_iterations = 20;
+      o.projective.iterations = 20;
       duration = 2.0;
       break;
   }

@@ -217,7 +217,7 @@ TEST(Placement, PlacedOutfitDrapesOutOfItsCrossings) {
   SimulationOptions o;
   o.integrator = Integrator::projective;
   o.dt = 1.0 / 120;
-  o.projective_iterations = 4;
+  o.projective.iterations = 4;
   o.air_damping = 0.5;
   o.strain_limiting = true;
   o.self_collision = true;

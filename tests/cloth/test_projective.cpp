@@ -80,11 +80,11 @@ ClothModel oscillator(double L0, double k, double m) {
 double oscillator_error(TimeScheme scheme, double dt) {
   const double L0 = 0.1, k = 100.0, m = 0.1, A = 0.005, T = 0.5;
   SimulationOptions o = test::bare_options(Integrator::projective);
-  o.time_scheme = scheme;
+  o.projective.time_scheme = scheme;
   o.gravity.setZero();
   o.dt = dt;
-  o.projective_iterations = 50;
-  o.newton_tolerance = 1e-14;
+  o.projective.iterations = 50;
+  o.iteration_tolerance = 1e-14;
   ClothSimulator sim(oscillator(L0, k, m), o);
   sim.set_pinned({0});
   Eigen::MatrixX3d x = sim.positions();
@@ -148,16 +148,16 @@ TEST(ProjectiveDynamics, ConvergedStepsMatchNewtonsMinimiser) {
       SimulationOptions o = test::bare_options(Integrator::implicit_euler);
       o.dt = 1.0 / 60;
       o.air_damping = 0.1;
-      o.newton_tolerance = 1e-13;
+      o.iteration_tolerance = 1e-13;
       SimulationOptions pd = o, newton = o;
       pd.integrator = Integrator::projective;
-      pd.projective_iterations = 20000;
-      pd.projective_lbfgs_history = lbfgs;
-      pd.projective_adaptive_weights = variant == 2;
-      pd.projective_single_precision = single;
+      pd.projective.iterations = 20000;
+      pd.projective.lbfgs_history = lbfgs;
+      pd.projective.adaptive_weights = variant == 2;
+      pd.projective.single_precision = single;
       newton.integrator = Integrator::newton;
-      newton.linear_solver = LinearSolver::ldlt;
-      newton.newton_iterations = 100;
+      newton.linear.solver = LinearSolver::ldlt;
+      newton.newton.iterations = 100;
       ClothSimulator a(model, pd), b(model, newton);
       a.set_pinned({n * (n - 1), n * n - 1});
       b.set_pinned({n * (n - 1), n * n - 1});
@@ -227,8 +227,8 @@ TEST(ProjectiveDynamics, TrBdf2IsStableAndDissipativeOnVeryStiffSpringsAtLargeSt
   model.springs.k_knee = model.springs.k_rest;
   for (bool adaptive : {false, true}) {
     SimulationOptions o = test::bare_options(Integrator::projective);
-    o.time_scheme = TimeScheme::tr_bdf2;
-    o.projective_adaptive_weights = adaptive;
+    o.projective.time_scheme = TimeScheme::tr_bdf2;
+    o.projective.adaptive_weights = adaptive;
     o.dt = 1.0 / 24.0;
     o.air_damping = 0.1;
     ClothSimulator sim(model, o);
@@ -252,11 +252,11 @@ TEST(ProjectiveDynamics, AdaptiveWeightsFollowTheStrainAndConvergeFaster) {
                                        fabric_by_name("gray-interlock"));
   auto run = [&](bool adaptive, int iterations, int lbfgs = 0) {
     SimulationOptions o = test::bare_options(Integrator::projective);
-    o.projective_lbfgs_history = lbfgs;
-    o.time_scheme = TimeScheme::tr_bdf2;
-    o.projective_adaptive_weights = adaptive;
-    o.projective_iterations = iterations;
-    o.newton_tolerance = 1e-12;
+    o.projective.lbfgs_history = lbfgs;
+    o.projective.time_scheme = TimeScheme::tr_bdf2;
+    o.projective.adaptive_weights = adaptive;
+    o.projective.iterations = iterations;
+    o.iteration_tolerance = 1e-12;
     o.dt = 1.0 / 60;
     o.air_damping = 0.1;
     ClothSimulator sim(model, o);
@@ -285,7 +285,7 @@ TEST(ProjectiveDynamics, Bdf2IsStableOnVeryStiffSpringsAtLargeSteps) {
   for (double& k : model.springs.k_rest) k *= 1e4;
   model.springs.k_knee = model.springs.k_rest;
   SimulationOptions o = test::bare_options(Integrator::projective);
-  o.time_scheme = TimeScheme::bdf2;
+  o.projective.time_scheme = TimeScheme::bdf2;
   o.dt = 1.0 / 24.0;
   o.air_damping = 0.1;
   ClothSimulator sim(model, o);
@@ -306,8 +306,8 @@ TEST(ProjectiveDynamics, CollisionsInsideTheIterationsKeepTheClothOutside) {
   const ClothModel model = build_cloth(make_grid({0.6, 0.6}, {n, n}, {0, 0.35, 0}, {0, 1, 0}),
                                        fabric_by_name("gray-interlock"));
   SimulationOptions o = test::bare_options(Integrator::projective);
-  o.projective_collisions = true;
-  o.projective_iterations = 5;
+  o.projective.collisions = true;
+  o.projective.iterations = 5;
   o.dt = 1.0 / 60;
   o.air_damping = 0.2;
   o.colliders = {Collider::sphere({0, 0, 0}, 0.3)};
@@ -329,11 +329,11 @@ TEST(ProjectiveDynamics, ContactForcesOfAClothAtRestOnAPlaneCarryItsWeight) {
   const ClothModel model = build_cloth(make_grid({0.4, 0.4}, {n, n}, {0, 0.01, 0}, {0, 1, 0}),
                                        fabric_by_name("11oz-black-denim"));
   SimulationOptions o = test::bare_options(Integrator::projective);
-  o.projective_iterations = 5;
+  o.projective.iterations = 5;
   o.dt = 1.0 / 60;
   o.air_damping = 0.5;
   o.colliders = {Collider::plane({0, 0, 0}, {0, 1, 0})};
-  ASSERT_TRUE(o.projective_collisions);  // the default
+  ASSERT_TRUE(o.projective.collisions);  // the default
   ClothSimulator sim(model, o);
   for (int step = 0; step < 180; ++step) ASSERT_TRUE(sim.step().ok);
   const std::vector<double>& f = sim.contact_forces();
@@ -345,7 +345,7 @@ TEST(ProjectiveDynamics, ContactForcesOfAClothAtRestOnAPlaneCarryItsWeight) {
   for (int v = 0; v < n * n; ++v) EXPECT_NEAR(sim.positions()(v, 1), o.collision_margin, 1e-6);
   // Without the forces the same cloth ends where the collider pass puts it, but nothing holds it
   // inside the step: the forces are what the flag adds.
-  o.projective_collisions = false;
+  o.projective.collisions = false;
   ClothSimulator off(model, o);
   for (int step = 0; step < 10; ++step) ASSERT_TRUE(off.step().ok);
   EXPECT_TRUE(off.contact_forces().empty());
@@ -361,8 +361,8 @@ TEST(ProjectiveDynamics, ClothOnASphereEndsWithinTheStrainLimitWithContactsInsid
                                        fabric_by_name("gray-interlock"));
   for (bool inside : {true, false}) {
     SimulationOptions o = test::bare_options(Integrator::projective);
-    o.projective_iterations = 5;
-    o.projective_collisions = inside;
+    o.projective.iterations = 5;
+    o.projective.collisions = inside;
     o.dt = 1.0 / 60;
     o.air_damping = 0.2;
     o.strain_limiting = true;

@@ -87,21 +87,21 @@ TEST(ClothScene, ProjectiveDynamicsKeys) {
   test::TempDir dir;
   const std::string grid = R"("grid": {"size": [1, 1], "resolution": [4, 4]})";
   const ClothScene defaults = load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}})"));
-  EXPECT_EQ(defaults.simulation.time_scheme, TimeScheme::backward_euler);
-  EXPECT_TRUE(defaults.simulation.projective_collisions);
+  EXPECT_EQ(defaults.simulation.projective.time_scheme, TimeScheme::backward_euler);
+  EXPECT_TRUE(defaults.simulation.projective.collisions);
   const ClothScene s =
       load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation": {"integrator":
       "projective", "time_scheme": "bdf2", "projective_collisions": false}})"));
   EXPECT_EQ(s.simulation.integrator, Integrator::projective);
-  EXPECT_EQ(s.simulation.time_scheme, TimeScheme::bdf2);
-  EXPECT_FALSE(s.simulation.projective_collisions);
-  EXPECT_FALSE(defaults.simulation.projective_adaptive_weights);
-  EXPECT_EQ(defaults.simulation.projective_lbfgs_history, 0);
+  EXPECT_EQ(s.simulation.projective.time_scheme, TimeScheme::bdf2);
+  EXPECT_FALSE(s.simulation.projective.collisions);
+  EXPECT_FALSE(defaults.simulation.projective.adaptive_weights);
+  EXPECT_EQ(defaults.simulation.projective.lbfgs_history, 0);
   const ClothScene t =
       load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation": {"integrator":
       "projective", "time_scheme": "tr_bdf2", "projective_adaptive_weights": true,
       "projective_lbfgs_history": 5}})"));
-  EXPECT_EQ(t.simulation.time_scheme, TimeScheme::tr_bdf2);
-  EXPECT_TRUE(t.simulation.projective_adaptive_weights);
-  EXPECT_EQ(t.simulation.projective_lbfgs_history, 5);
+  EXPECT_EQ(t.simulation.projective.time_scheme, TimeScheme::tr_bdf2);
+  EXPECT_TRUE(t.simulation.projective.adaptive_weights);
+  EXPECT_EQ(t.simulation.projective.lbfgs_history, 5);
 }

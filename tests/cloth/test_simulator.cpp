@@ -109,11 +109,11 @@ TEST(Simulator, HangingChainMatchesTheClosedForm) {
                           Config{Integrator::newton, LinearSolver::conjugate_gradient}}) {
     const LinearSolver solver = c.solver;
     SimulationOptions o = test::bare_options(c.integrator);
-    o.newton_tolerance = 1e-12;
+    o.iteration_tolerance = 1e-12;
     o.dt = 0.02;
     o.air_damping = 5.0;
-    o.linear_solver = solver;
-    o.cg_tolerance = 1e-12;
+    o.linear.solver = solver;
+    o.linear.cg_tolerance = 1e-12;
     ClothSimulator sim(model, o);
     sim.set_pinned({0});
     for (int step = 0; step < 5000; ++step) {
@@ -388,9 +388,9 @@ double settle_projective_chain(double load, int lbfgs) {
   for (double& m : masses) m *= load;
   const ClothModel model = chain(8, 0.1, 25.0, 100.0, masses);
   SimulationOptions o = test::bare_options(Integrator::projective);
-  o.projective_lbfgs_history = lbfgs;
-  o.projective_iterations = 200;
-  o.newton_tolerance = 1e-13;
+  o.projective.lbfgs_history = lbfgs;
+  o.projective.iterations = 200;
+  o.iteration_tolerance = 1e-13;
   o.dt = 0.02;
   o.air_damping = 5.0;
   ClothSimulator sim(model, o);
@@ -439,7 +439,7 @@ TEST(Simulator, ProjectiveDynamicsIsStableOnVeryStiffSpringsAtLargeSteps) {
     const StepResult r = sim.step();
     ASSERT_TRUE(r.ok) << r.failure;
     ASSERT_TRUE(sim.positions().allFinite());
-    EXPECT_LE(r.newton_iterations, o.projective_iterations);
+    EXPECT_LE(r.newton_iterations, o.projective.iterations);
     if (step > 24) {  // after the first swing the energy only falls (backward Euler dissipates)
       const double e = total_energy(sim);
       EXPECT_LE(e, previous + 1e-9);

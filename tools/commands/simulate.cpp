@@ -136,7 +136,7 @@ int SimulateCommand::run() {
   json report = {
       {"scene", scene},
       {"integrator", to_string(o.integrator)},
-      {"linear_solver", o.linear_solver == LinearSolver::ldlt ? "ldlt" : "cg"},
+      {"linear_solver", o.linear.solver == LinearSolver::ldlt ? "ldlt" : "cg"},
       {"fabric", s.fabric_name},
       {"vertices", sim.positions().rows()},
       {"springs", {{"structural", s.model.springs.count(SpringType::structural)},

@@ -28,12 +28,55 @@ std::string to_string(TimeScheme scheme);
 Integrator parse_integrator(const std::string& text);
 std::string to_string(Integrator integrator);
 
+/// The linear solves of implicit Euler and Newton.
+struct LinearSolveOptions {
+  LinearSolver solver = LinearSolver::conjugate_gradient;
+  /// Relative residual of the conjugate gradient solve. The error against run time bench found the
+  /// time step, not the solve, to set the error: 1e-3 and 1e-8 gave the same error, 1e-3 at a third
+  /// of the cost (docs/results.md); 1e-4 keeps a margin.
+  double cg_tolerance = 1e-4;
+  int cg_max_iterations = 1000;
+};
+
+/// Newton's method on backward Euler's incremental potential.
+struct NewtonOptions {
+  int iterations = 10;  ///< per step at most
+};
+
+/// Projective dynamics (projective.cpp).
+struct ProjectiveOptions {
+  /// Local/global iterations per step at most (fewer when no particle moves more than
+  /// SimulationOptions::iteration_tolerance in one).
+  int iterations = 10;
+  /// Backward Euler's numerical damping sets the error of swinging cloth at large steps; BDF2 (the
+  /// same minimisation with inertia target (4x_n − x_{n−1})/3 + (2h/3)(4v_n − v_{n−1})/3 and step
+  /// 2h/3) is second order (docs/cloth.md, docs/results.md).
+  TimeScheme time_scheme = TimeScheme::backward_euler;
+  /// Solve the global step's corrections with a single-precision factor (half the memory traffic;
+  /// the double-precision residual keeps the result accurate). false: a double-precision factor
+  /// solves for the positions directly.
+  bool single_precision = true;
+  /// Contacts inside the iterations. Each particle in contact carries a normal contact force in the
+  /// global step's right-hand side, raised by the particle's penetration after every global step
+  /// (and lowered by its gap once it lifts off), kept from step to step; the particle is also pushed
+  /// out to the margin. So the springs are solved around the contacts within the step instead of
+  /// being pulled into the collider and pushed back after it (docs/cloth.md). false: contacts only
+  /// in the collider pass after the step.
+  bool collisions = true;
+  /// 0 = local/global iterations; m > 0 = L-BFGS with the last m pairs and the projective matrix as
+  /// initial Hessian, with a line search (Liu et al. 2017; docs/cloth.md).
+  int lbfgs_history = 0;
+  /// Each spring's weight follows its strain (the law's tangent stiffness a little beyond it, raised
+  /// and refactorised when a spring stiffens past it) instead of one weight per spring from the
+  /// law's knee (docs/cloth.md).
+  bool adaptive_weights = false;
+};
+
 struct SimulationOptions {
   /// The defaults hold on every scene of the drop matrix (docs/benchmarks.md: cloth dropped onto real
   /// bodies from up to 3.5 m, every fabric, any units): projective dynamics at up to 1/120 s with
   /// adaptive steps, strain limited to 10 %.
   Integrator integrator = Integrator::projective;
-  LinearSolver linear_solver = LinearSolver::conjugate_gradient;  ///< implicit Euler only
   double dt = 1.0 / 120.0;                   ///< time step [s], > 0 (the largest, with adaptive stepping)
   Eigen::Vector3d gravity{0.0, -9.81, 0.0};  ///< [m/s²]
   double air_damping = 0.1;     ///< c in f = −c m (v − wind) [1/s]: mass-proportional, resolution independent
@@ -65,38 +108,12 @@ struct SimulationOptions {
   double strain_limit = 0.1;       ///< largest spring strain allowed by both mechanisms [unitless]
   int strain_limit_iterations = 100;  ///< cap on Gauss–Seidel sweeps of the correction
   double strain_limit_tolerance = 1e-4;  ///< springs within limit + this strain count as done
-  /// Relative residual of the conjugate gradient solve. The error against run time bench found the
-  /// time step, not the solve, to set the error: 1e-3 and 1e-8 gave the same error, 1e-3 at a third
-  /// of the cost (docs/results.md); 1e-4 keeps a margin.
-  double cg_tolerance = 1e-4;
-  int cg_max_iterations = 1000;
-  int newton_iterations = 10;       ///< Newton integrator: iterations per step at most
-  double newton_tolerance = 1e-6;   ///< Newton integrator: stop when no particle moves more [m]
-  /// Projective dynamics: local/global iterations per step at most; it also stops when no particle
-  /// moves more than newton_tolerance in an iteration.
-  int projective_iterations = 10;
-  /// Projective dynamics' time scheme. Backward Euler's numerical damping sets the error of swinging
-  /// cloth at large steps; BDF2 (the same minimisation with inertia target (4x_n − x_{n−1})/3 +
-  /// (2h/3)(4v_n − v_{n−1})/3 and step 2h/3) is second order (docs/cloth.md, docs/results.md).
-  TimeScheme time_scheme = TimeScheme::backward_euler;
-  /// Projective dynamics: solve the global step's corrections with a single-precision factor (half
-  /// the memory traffic; the double-precision residual keeps the result accurate). false: a
-  /// double-precision factor solves for the positions directly.
-  bool projective_single_precision = true;
-  /// Projective dynamics: contacts inside the iterations. Each particle in contact carries a normal
-  /// contact force in the global step's right-hand side, raised by the particle's penetration after
-  /// every global step (and lowered by its gap once it lifts off), kept from step to step; the
-  /// particle is also pushed out to the margin. So the springs are solved around the contacts
-  /// within the step instead of being pulled into the collider and pushed back after it
-  /// (docs/cloth.md). false: contacts only in the collider pass after the step.
-  bool projective_collisions = true;
-  /// Projective dynamics: 0 = local/global iterations; m > 0 = L-BFGS with the last m pairs and the
-  /// projective matrix as initial Hessian, with a line search (Liu et al. 2017; docs/cloth.md).
-  int projective_lbfgs_history = 0;
-  /// Projective dynamics: each spring's weight follows its strain (the law's tangent stiffness a
-  /// little beyond it, raised and refactorised when a spring stiffens past it) instead of one
-  /// weight per spring from the law's knee (docs/cloth.md).
-  bool projective_adaptive_weights = false;
+  /// Each integrator's own options.
+  LinearSolveOptions linear;
+  NewtonOptions newton;
+  ProjectiveOptions projective;
+  /// Newton's and projective dynamics' iterations stop when no particle moves more [m].
+  double iteration_tolerance = 1e-6;
   double blow_up_strain = 1.0;     ///< a step that leaves a spring strained beyond this has failed
   /// Adaptive time step: a failed step, or one whose integrator raises the largest strain by more
   /// than max_strain_change, is undone and retried at half the step (down to dt_min; a rise that two
@@ -178,7 +195,7 @@ class ClothSimulator {
   const std::vector<char>& sewn() const { return sewn_; }
   /// Edge–triangle crossings of the cloth at its current positions (seam neighbours excluded).
   int intersections() const;
-  /// Projective dynamics with projective_collisions: each particle's normal contact force at the
+  /// Projective dynamics with projective.collisions: each particle's normal contact force at the
   /// end of the last step [N] (empty before the first step or without colliders).
   const std::vector<double>& contact_forces() const { return contact_forces_.force; }
 
@@ -325,7 +342,7 @@ class ClothSimulator {
   /// The factorisations of up to four other step sizes, most recent first (adaptive steps, BDF2's
   /// start-up); dropped when adaptive weights change the matrix.
   std::vector<std::shared_ptr<Projective>> projective_cache_;
-  /// Projective dynamics' contacts (projective_collisions): per particle the normal contact force
+  /// Projective dynamics' contacts (projective.collisions): per particle the normal contact force
   /// [N] (0: none), its collider (−1: none) and its normal at the last pass, kept between steps.
   struct ContactForces {
     std::vector<double> force;
