@@ -455,7 +455,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       separation = std::max(separation, g.thickness);
       report += (report.empty() ? "" : ", ") + g.name + " " + number(1e3 * g.thickness, 2) + " mm";
     }
-    report += " (mass per area over fibre density × solidity 0.25); no fabric is a fill that needs a double layer";
+    report += " (mass per area over fibre density × solidity 0.25), each garment settled as one sheet";
     stage.done(true, report);
   }
 
