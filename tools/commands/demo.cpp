@@ -39,7 +39,12 @@ int DemoCommand::run() {
   check_options(garments);
   GarmentOptions over = garments;
   over.ease += over_ease;
-  check_options(over);
+  try {
+    check_options(over);
+  } catch (const InputError&) {
+    throw InputError("--ease " + std::to_string(garments.ease) + ": the t-shirt, worn over the trousers, takes " +
+                     std::to_string(over_ease) + " m more, and its ease would leave the garments' range");
+  }
   if (!(seconds >= 0.0 && seconds <= 60.0))
     throw InputError("--dress-seconds " + std::to_string(seconds) + ": must be between 0 and 60");
   DressOptions options;
