@@ -2,6 +2,10 @@
 // includes CGAL's PMP headers (they cost ~15 s of compile time each).
 #include "dresskit/mesh/cleanup.h"
 
+#include <cmath>
+
+#include "dresskit/mesh/errors.h"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -245,6 +249,10 @@ std::vector<std::string> CleanupResult::changes() const {
 }
 
 CleanupResult cleanup_mesh(const TriangleMesh& input, const CleanupOptions& options) {
+  if (!(options.remesh_edge_length >= 0.0 && std::isfinite(options.remesh_edge_length)))
+    throw InputError("remesh edge length: " + std::to_string(options.remesh_edge_length) + " m (must be 0 or more)");
+  if (options.remesh_iterations < 1 || options.max_hole_edges < 1)
+    throw InputError("remesh iterations and largest hole: must be at least 1");
   CleanupResult r;
   auto t0 = Clock::now();
 

@@ -214,6 +214,20 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   if (!(o.limb_tip_fraction >= 0 && o.limb_tip_fraction < 1))
     throw InputError("limb_tip_fraction: " + std::to_string(o.limb_tip_fraction) +
                      " (must be at least 0 and less than 1)");
+  if (!(o.over_segmentation >= 0 && o.over_segmentation <= kMaxParts))
+    throw InputError("over_segmentation: " + std::to_string(o.over_segmentation) + " (must be 0 to " +
+                     std::to_string(kMaxParts) + ")");
+  if (!(o.symmetry_tolerance >= 0 && std::isfinite(o.symmetry_tolerance)))
+    throw InputError("symmetry_tolerance: " + std::to_string(o.symmetry_tolerance) + " (must be 0 or more)");
+  if (!(o.bridge_gaps >= 0 && std::isfinite(o.bridge_gaps)))
+    throw InputError("bridge_gaps: " + std::to_string(o.bridge_gaps) + " (must be 0 or more)");
+  if (o.smoothing_iterations < 0)
+    throw InputError("smoothing_iterations: " + std::to_string(o.smoothing_iterations) + " (must be 0 or more)");
+  if (o.eigen.ncv < 0 || o.eigen.ncv > mesh.num_vertices())
+    throw InputError("ncv: " + std::to_string(o.eigen.ncv) + " (must be 0 for automatic, or at most the " +
+                     std::to_string(mesh.num_vertices()) + " vertices)");
+  if (!(o.eigen.tolerance > 0 && o.eigen.tolerance < 1) || o.eigen.max_iterations <= 0)
+    throw InputError("eigen-solver: tolerance must be in (0, 1) and iterations positive");
   SegmentationResult r;
   r.parts_automatic = o.parts == 0;
   const int n = mesh.num_vertices();

@@ -1,6 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 #include "dresskit/mesh/cleanup.h"
+#include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/isosurface.h"
 #include "dresskit/mesh/topology.h"
 #include "mesh_fixtures.h"
@@ -188,4 +192,13 @@ TEST(Cleanup, RemeshesASphereToTheTargetEdgeLength) {
   EXPECT_NEAR(t.signed_volume, 4.0 / 3.0 * M_PI, 0.05 * 4.0 / 3.0 * M_PI);
   // Vertices that remeshing created have no source vertex.
   EXPECT_GT((r.mesh.source_vertex.array() < 0).count(), 0);
+}
+
+// A remeshing length that is not a number, or negative, is refused, not passed to CGAL.
+TEST(Cleanup, RefusesAnImpossibleRemeshingLength) {
+  for (double edge : {std::nan(""), -0.01, std::numeric_limits<double>::infinity()}) {
+    CleanupOptions o;
+    o.remesh_edge_length = edge;
+    EXPECT_THROW(cleanup_mesh(fixtures::cube(1.0), o), InputError) << edge;
+  }
 }

@@ -501,3 +501,31 @@ TEST(SegmentationBadInput, ClearErrorsOrDocumentedFallbacks) {
   EXPECT_EQ(one.vertex_labels.maxCoeff(), 0);
   EXPECT_EQ(one.vertex_labels.minCoeff(), 0);
 }
+
+// Impossible option values are refused before any work, naming the option (the eigen-solver would
+// otherwise run for minutes on an ncv of 10⁸).
+TEST(Segmentation, ImpossibleOptionValuesAreRefusedNamingTheOption) {
+  const TriangleMesh cube = fixtures::cube(1.0);
+  auto refused = [&](SegmentationOptions o, const std::string& name) {
+    try {
+      segment_mesh(cube, o);
+    } catch (const InputError& e) {
+      return std::string(e.what()).rfind(name, 0) == 0;
+    }
+    return false;
+  };
+  SegmentationOptions o;
+  o.eigen.ncv = -5;
+  EXPECT_TRUE(refused(o, "ncv"));
+  o.eigen.ncv = 100000000;
+  EXPECT_TRUE(refused(o, "ncv"));
+  o = {};
+  o.over_segmentation = -1;
+  EXPECT_TRUE(refused(o, "over_segmentation"));
+  o = {};
+  o.symmetry_tolerance = std::nan("");
+  EXPECT_TRUE(refused(o, "symmetry_tolerance"));
+  o = {};
+  o.bridge_gaps = -1.0;
+  EXPECT_TRUE(refused(o, "bridge_gaps"));
+}
