@@ -451,7 +451,9 @@ TEST(Cli, SegmentBadInputExits2WithOneLineAndNoOutput) {
   for (const std::string args :
        {"missing.obj", "empty.obj", "cube.obj --parts 0", "cube.obj --parts 9",
         "cube.obj --affinity nearest", "cube.obj --laplacian weird", "cube.obj --max-parts 0",
-        "cube.obj --units furlong", "cube.obj --bridge-gaps -1"}) {
+        "cube.obj --units furlong", "cube.obj --bridge-gaps -1", "cube.obj --up +y --forward +y",
+        "cube.obj --up +z --forward -z", "cube.obj --ncv -5", "cube.obj --over-segmentation -1",
+        "cube.obj --symmetry nan"}) {
     const std::string first = args.substr(0, args.find(' '));
     const CliRun r = run(
         dir, "segment " + dir.file(first) + args.substr(first.size()) + " -o " + dir.file("out"));

@@ -256,7 +256,12 @@ int SegmentCommand::run() {
   options.affinity.kind = parse_affinity(affinity);
   options.laplacian = parse_laplacian(laplacian);
   if (command->count("--up")) options.up = Eigen::Vector3d::UnitY();  // the loader turned it to +Y
-  if (!forward.empty()) options.forward = axis_vector(parse_up_axis(forward));
+  if (!forward.empty()) {
+    // Given in the file's axes, like --up; the loader turns the file so that its up is +Y.
+    options.forward = up_rotation(load.up) * axis_vector(parse_up_axis(forward));
+    if (std::abs(options.forward.y()) > 0.5)
+      throw InputError("--forward " + forward + ": along the up axis (--up " + up + "); the character faces across it");
+  }
   if (!(options.eigen.tolerance > 0)) throw InputError("--tolerance: must be positive");
   if (!(options.bridge_gaps >= 0)) throw InputError("--bridge-gaps: must be 0 or more");
   if (!(options.boundary_band >= 0)) throw InputError("--boundary-band: must be 0 or more");
