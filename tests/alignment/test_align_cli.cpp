@@ -115,3 +115,20 @@ TEST(AlignCli, PlacementReadsSegmentsLabels) {
   EXPECT_TRUE(j["unmatched_garment_parts"].empty());
   EXPECT_EQ(load_mesh(dir.file("out/posed.obj")).num_vertices(), 2197);
 }
+
+// An output that would replace an input is refused before anything is written: the source named
+// aligned.obj in the output folder stays as it was, and no result.json appears beside it.
+TEST(AlignCli, RefusesToOverwriteItsInput) {
+  test::TempDir dir;
+  const TriangleMesh body = test::DefaultScene::get().mannequin;
+  save_mesh(body, dir.file("aligned.obj"));
+  save_mesh(body, dir.file("target.obj"));
+  const std::string before = slurp(dir.file("aligned.obj"));
+  const CliRun r = run(dir, "align " + dir.file("aligned.obj") + " " + dir.file("target.obj") + " --rigid -o " +
+                                dir.path().string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("refusing to overwrite the input"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir.file("aligned.obj")), before);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("result.json")));
+}

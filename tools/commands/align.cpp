@@ -8,6 +8,7 @@
 
 #include "dresskit/alignment/part_labels.h"
 #include "dresskit/mesh/errors.h"
+#include "common/output_folder.h"
 #include "dresskit/mesh/io.h"
 
 namespace dresskit::cli {
@@ -46,21 +47,16 @@ TriangleMesh load(const std::string& path, const std::string& units, const std::
   return load_mesh(path, options);
 }
 
-// Creates dir (when missing) and writes the mesh and the report; on failure removes what it
-// created.
+// Writes the mesh and the report into dir together, never over one of the inputs.
 void write_outputs(const std::string& dir, const std::string& mesh_name, const TriangleMesh& mesh,
-                   const json& report) {
-  std::error_code ec;
-  const bool created = !fs::exists(dir, ec);
-  if (!fs::create_directories(dir, ec) && ec)
-    throw OutputError(dir + ": cannot create directory: " + ec.message());
-  try {
-    save_mesh(mesh, (fs::path(dir) / mesh_name).string());
-    write_file_atomically((fs::path(dir) / "result.json").string(), report.dump(2) + "\n");
-  } catch (...) {
-    if (created) fs::remove_all(dir, ec);
-    throw;
-  }
+                   const json& report, const std::vector<std::string>& inputs) {
+  write_folder(
+      dir,
+      [&](const fs::path& folder) {
+        save_mesh(mesh, (folder / mesh_name).string());
+        write_file_atomically((folder / "result.json").string(), report.dump(2) + "\n");
+      },
+      inputs);
 }
 
 }  // namespace
@@ -160,7 +156,7 @@ int AlignCommand::run() {
     TriangleMesh aligned = src;
     aligned.V = transform_points(r.transform, src.V);
     if (aligned.N.rows()) aligned.N = transform_normals(r.transform, src.N);
-    write_outputs(dir, "aligned.obj", aligned, report);
+    write_outputs(dir, "aligned.obj", aligned, report, {source, target});
     std::cout << "aligned " << source << " onto " << target << ": fitness " << text(r.fitness)
               << ", rmse " << text(r.rmse) << " m, " << r.iterations << " iterations, "
               << text(g.seconds) << " s\n";
@@ -226,7 +222,7 @@ int AlignCommand::run() {
   TriangleMesh posed = garment;
   posed.V = p.V;
   posed.N.resize(0, 3);
-  write_outputs(dir, "posed.obj", posed, report);
+  write_outputs(dir, "posed.obj", posed, report, {source, target, garment_labels, body_labels, reference});
   std::cout << "placed " << source << " on " << target << ": " << p.matching.matches.size()
             << " parts matched, " << p.global_method << ", scale " << text(p.global_scale) << ", "
             << p.pushed_out << " vertices pushed out, " << text(p.seconds) << " s\n";

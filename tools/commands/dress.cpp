@@ -108,11 +108,18 @@ int DressCommand::run() {
   }
 
   std::string report;
-  write_folder(dir, [&](const fs::path& folder) {
-    DressOutputOptions o;
-    o.segments = segments;
-    report = write_dress_outputs(folder.string(), r, o);
-  });
+  std::vector<std::string> inputs = garments;
+  inputs.push_back(body);
+  inputs.push_back(body_labels);
+  inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
+  write_folder(
+      dir,
+      [&](const fs::path& folder) {
+        DressOutputOptions o;
+        o.segments = segments;
+        report = write_dress_outputs(folder.string(), r, o);
+      },
+      inputs);
   if (as_json) {
     std::cout << report;
   } else {

@@ -171,14 +171,17 @@ json result_json(const std::string& path, const TriangleMesh& mesh, const Segmen
        std::vector<int>(r.face_labels.data(), r.face_labels.data() + r.face_labels.size())}};
 }
 
-// Writes the texts and meshes into DIR, all of them or none.
+// Writes the texts and meshes into DIR, all of them or none, never over the input.
 void write_outputs(const std::string& dir,
                    const std::vector<std::pair<std::string, std::string>>& texts,
-                   const std::vector<std::pair<std::string, TriangleMesh>>& meshes) {
-  write_folder(dir, [&](const fs::path& temp) {
-    for (const auto& [name, text] : texts) write_file_atomically((temp / name).string(), text);
-    for (const auto& [name, mesh] : meshes) save_mesh(mesh, (temp / name).string());
-  });
+                   const std::vector<std::pair<std::string, TriangleMesh>>& meshes, const std::string& input) {
+  write_folder(
+      dir,
+      [&](const fs::path& temp) {
+        for (const auto& [name, text] : texts) write_file_atomically((temp / name).string(), text);
+        for (const auto& [name, mesh] : meshes) save_mesh(mesh, (temp / name).string());
+      },
+      {input});
 }
 
 }  // namespace
@@ -289,7 +292,7 @@ int SegmentCommand::run() {
   for (size_t p = 0; p < r.parts.size(); ++p)
     meshes.emplace_back(r.parts[p].name + ".obj",
                         part_mesh(mesh, r.face_labels, static_cast<int>(p)));
-  write_outputs(output, {{"labels.json", report.dump(1) + "\n"}}, meshes);
+  write_outputs(output, {{"labels.json", report.dump(1) + "\n"}}, meshes, path);
 
   if (as_json) {
     json summary = report;

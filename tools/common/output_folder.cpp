@@ -7,7 +7,8 @@
 namespace dresskit::cli {
 namespace fs = std::filesystem;
 
-void write_folder(const std::string& dir, const std::function<void(const fs::path&)>& write) {
+void write_folder(const std::string& dir, const std::function<void(const fs::path&)>& write,
+                  const std::vector<std::string>& inputs) {
   const fs::path target = fs::absolute(dir).lexically_normal();
   const fs::path temp = target.parent_path() /
                         ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()));
@@ -17,6 +18,14 @@ void write_folder(const std::string& dir, const std::function<void(const fs::pat
     throw OutputError(dir + ": cannot create directory: " + ec.message());
   try {
     write(temp);
+    for (const auto& entry : fs::directory_iterator(temp)) {
+      const fs::path out = target / entry.path().filename();
+      for (const std::string& input : inputs) {
+        std::error_code same;
+        if (!input.empty() && fs::exists(out) && fs::equivalent(out, input, same))
+          throw InputError(out.string() + ": refusing to overwrite the input " + input);
+      }
+    }
     if (!fs::exists(target)) {
       fs::rename(temp, target);
       return;

@@ -5,11 +5,14 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace dresskit::cli {
 
 /// Calls write(folder) with the temporary folder, then moves what it wrote into dir. Throws
-/// OutputError naming dir when a folder cannot be made or a file moved; rethrows write's errors.
-void write_folder(const std::string& dir, const std::function<void(const std::filesystem::path&)>& write);
+/// OutputError naming dir when a folder cannot be made or a file moved; InputError, before anything
+/// is moved, when an output would replace one of `inputs`; rethrows write's errors.
+void write_folder(const std::string& dir, const std::function<void(const std::filesystem::path&)>& write,
+                  const std::vector<std::string>& inputs = {});
 
 }  // namespace dresskit::cli
