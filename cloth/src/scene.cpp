@@ -113,6 +113,7 @@ struct Garment {
   std::vector<int> pins;  ///< this garment's vertices (both layers of a double layer)
   PinMotion pin_motion;   ///< driven pins, this garment's vertices
   GarmentInfo info;
+  std::vector<std::string> files;  ///< the files it was read from (mesh, fabric file)
 };
 
 /// The panels of a grid or panels cloth: first vertex and vertices per side of each.
@@ -301,7 +302,8 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
   garment.info.fabric = cloth.text("fabric", "gray-interlock");
   Fabric fabric;
   if (cloth.has("fabric_file")) {
-    const auto fabrics = load_fabrics((folder / cloth.text("fabric_file", "")).string());
+    garment.files.push_back((folder / cloth.text("fabric_file", "")).string());
+    const auto fabrics = load_fabrics(garment.files.back());
     auto it = std::find_if(fabrics.begin(), fabrics.end(), [&](const Fabric& f) { return f.name == garment.info.fabric; });
     if (it == fabrics.end()) cloth.fail("'" + garment.info.fabric + "' is not in the fabric file", "fabric");
     fabric = *it;
@@ -341,7 +343,8 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
   } else if (cloth.has("mesh")) {
     LoadOptions load;
     load.units.metres_per_unit = scale;
-    const TriangleMesh mesh = load_mesh((folder / cloth.text("mesh", "")).string(), load);
+    garment.files.push_back((folder / cloth.text("mesh", "")).string());
+    const TriangleMesh mesh = load_mesh(garment.files.back(), load);
     model = build_cloth(mesh, fabric, build);
   } else {
     if (!(build.total_mass > 0)) cloth.fail("a chain needs a positive total_mass", "total_mass");
@@ -484,6 +487,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     info.first_vertex = first[k];
     info.vertices = first[k + 1] - first[k];
     scene.garments.push_back(info);
+    scene.files.insert(scene.files.end(), garments[k].files.begin(), garments[k].files.end());
   }
   scene.fabric_name = scene.garments[0].fabric;
   scene.faces = scene.model.faces;
@@ -516,6 +520,7 @@ ClothScene load_cloth_scene(const std::string& path) {
       } else if (type == "mesh") {
         c.allow({"type", "path", "units", "up", "translate", "friction", "static_friction", "penalty", "cell", "band"});
         scene.simulation.colliders.push_back(read_mesh_collider(c, folder, scale));
+        scene.files.push_back((folder / c.text("path", "")).string());
         scene.simulation.colliders.back().friction = friction;
       } else {
         c.fail("'" + type + "' is not sphere, plane, box, cylinder or mesh", "type");

@@ -470,3 +470,18 @@ TEST(Cli, SegmentBadInputExits2WithOneLineAndNoOutput) {
   EXPECT_EQ(j["vertex_labels"].size(), 8u);
   EXPECT_EQ(run(dir, "segment " + dir.file("cube.obj")).code, 64);  // no -o
 }
+
+// A cloth mesh called result.obj in the output folder would be replaced by the result: refused with
+// one line before anything runs, the file left as it was.
+TEST(Cli, SimulateRefusesToOverwriteItsClothMesh) {
+  test::TempDir dir;
+  save_mesh(fixtures::grid(4, 4, 0.05), dir.file("result.obj"));
+  const std::string before = slurp(dir.file("result.obj"));
+  write(dir.file("scene.json"), R"({"cloth": {"mesh": "result.obj"}, "simulation": {"duration": 0.01}})");
+  const CliRun r = run(dir, "simulate " + dir.file("scene.json") + " -o " + dir.path().string());
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("result.obj"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(dir.file("result.obj")), before);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("report.json")));
+}

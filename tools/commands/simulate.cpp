@@ -46,6 +46,18 @@ int inside_count(const Collider& c, const Eigen::MatrixX3d& x, double* deepest) 
 int SimulateCommand::run() {
   using Clock = std::chrono::steady_clock;
   ClothScene s = load_cloth_scene(scene);
+  // Outputs are result.obj, report.json and frame_NNNNN.obj in dir: none may be a file the run reads.
+  std::vector<std::string> inputs = s.files;
+  inputs.push_back(scene);
+  for (const std::string& input : inputs) {
+    std::error_code same;
+    const fs::path p(input);
+    const std::string name = p.filename().string();
+    const bool output_name = name == "result.obj" || name == "report.json" ||
+                             (name.rfind("frame_", 0) == 0 && p.extension() == ".obj");
+    if (output_name && fs::equivalent(p.parent_path().empty() ? fs::path(".") : p.parent_path(), dir, same))
+      throw InputError(input + ": the run would overwrite this input with its output; write to another folder");
+  }
   std::error_code ec;
   if (!fs::create_directories(dir, ec) && ec) throw OutputError(dir + ": cannot create directory: " + ec.message());
   ClothSimulator sim(s.model, s.simulation);

@@ -30,6 +30,7 @@ struct ClothScene {
   std::string fabric_name;         ///< the first garment's
   std::vector<GarmentInfo> garments;  ///< from the body outwards
   Eigen::MatrixX3i faces;          ///< for output; empty for a chain (written as a polyline)
+  std::vector<std::string> files;  ///< the files the scene reads besides itself (meshes, fabric files)
 };
 
 /// Reads and checks a scene file; mesh and fabric paths are relative to the scene's folder. Throws
