@@ -46,12 +46,25 @@ RunResult run(ClothSimulator& sim, const RunOptions& o, const std::function<void
   const double eps = 1e-6 * sim.options().dt;
   if (on_frame) on_frame(0);
   double calm_since = -1.0;
+  int tiny_steps = 0;
+  const double tiny = o.stall.factor * sim.options().dt_min;
   while (sim.time() < end - eps) {
     const StepResult r = sim.step();
     if (!r.ok) {
       result.ok = false;
       result.failure = r.failure;
       result.stopped_reason = "failed: " + r.failure;
+      break;
+    }
+    tiny_steps = r.dt <= tiny ? tiny_steps + 1 : 0;
+    if (o.stall.enabled && tiny_steps >= o.stall.steps) {
+      result.ok = false;
+      result.stalled = true;
+      result.failure = std::to_string(tiny_steps) + " steps in a row of at most " + std::to_string(tiny) +
+                       " s at " + std::to_string(sim.time() - start) +
+                       " s simulated (contacts and length limits cannot all hold)";
+      result.stopped_reason = "stalled: " + result.failure;
+      result.totals.add(r);
       break;
     }
     result.totals.add(r);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <numeric>
+#include <optional>
 
 #include "dresskit/alignment/part_labels.h"
 #include "dresskit/cloth/fabric.h"
@@ -378,6 +379,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   // fit and outer pieces are pushed out of inner ones.
   const InsideTest inside(result.body);
   const auto body_distance = std::make_shared<const MeshDistance>(result.body);
+  // Per garment, its placement with the crossing regions rebuilt, before untangle_along_path: where
+  // settling from the untangled one stalls, it settles from this one.
+  std::vector<std::pair<Eigen::MatrixX3d, int>> rebuilt(result.garments.size());
   {
     Stage stage(result, options, "placement");
     std::string report, names;
@@ -434,8 +438,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       g.crossings_placed = g.crossings_fitted = count_intersections(g.placed, g.mesh.F);
       if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
         untangle(result.garments, k, *body_distance, options.placement.clearance);
+        rebuilt[k] = {g.placed, g.crossings_placed};
+        untangle_along_path(result.garments, k);
         report += "; " + g.name + ": crossing itself " + std::to_string(g.crossings_fitted) + " times as fitted, " +
-                  std::to_string(g.crossings_placed) + " with those regions rebuilt (" +
+                  std::to_string(g.crossings_placed) + " untangled (" +
                   std::to_string(g.crossings_authored) + " as authored)";
       }
       g.inside_placed = surface_fit(g.placed, inside).inside;
@@ -475,11 +481,6 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         models.push_back(build_cloth(rest_shape(result.garments[k]), fabrics[k]));
       const std::vector<int> first = garment_offsets(models);
       const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
-      ClothSimulator sim(model, o);
-      Eigen::MatrixX3d x(model.rest_positions.rows(), 3);
-      for (std::size_t k = 0; k < result.garments.size(); ++k)
-        x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
-      sim.set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
       // Trousers and skirts stay up by their waistband, held as by a belt.
       std::vector<int> belt;
       std::string held;
@@ -490,16 +491,46 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         for (int v : band) belt.push_back(first[k] + v);
         if (!band.empty()) held += "; waistband of " + g.name + " held (" + std::to_string(band.size()) + " vertices)";
       }
-      if (!belt.empty()) sim.set_pinned(belt);
       RunOptions run_options;
       run_options.duration = duration;
-      result.settle = run(sim, run_options, {}, [&](const StepResult&) {
-        if (options.on_settle) options.on_settle(sim.time(), duration);
-      });
+      std::optional<ClothSimulator> sim;
+      auto settle = [&] {
+        sim.emplace(model, o);
+        Eigen::MatrixX3d x(model.rest_positions.rows(), 3);
+        for (std::size_t k = 0; k < result.garments.size(); ++k)
+          x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
+        sim->set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
+        if (!belt.empty()) sim->set_pinned(belt);
+        result.settle = run(*sim, run_options, {}, [&](const StepResult&) {
+          if (options.on_settle) options.on_settle(sim->time(), duration);
+        });
+      };
+      settle();
+      // A garment untangled by holding its parts apart may be pressed between them and the body
+      // tighter than its length limits allow; where that stalls the settle, it settles from its
+      // placement with the crossing regions rebuilt (crossing itself more often, which settling
+      // does not undo, but free to settle).
+      bool retried = false;
+      if (result.settle.stalled) {
+        for (std::size_t k = 0; k < result.garments.size(); ++k) {
+          DressedGarment& g = result.garments[k];
+          if (rebuilt[k].first.rows() == 0 || rebuilt[k].first == g.placed) continue;
+          std::tie(g.placed, g.crossings_placed) = rebuilt[k];
+          retried = true;
+        }
+        if (retried) {
+          held += "; settling the untangled placement " + result.settle.stopped_reason +
+                  ", settled from the one with the crossing regions rebuilt";
+          settle();
+        }
+      }
       result.settled = true;
-      for (std::size_t k = 0; k < result.garments.size(); ++k)
-        result.garments[k].dressed = sim.positions().middleRows(first[k], first[k + 1] - first[k]);
-      stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim.time()) +
+      for (std::size_t k = 0; k < result.garments.size(); ++k) {
+        DressedGarment& g = result.garments[k];
+        g.dressed = sim->positions().middleRows(first[k], first[k + 1] - first[k]);
+        if (retried) g.inside_placed = surface_fit(g.placed, inside).inside;
+      }
+      stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim->time()) +
                            " s simulated, " + result.settle.stopped_reason + held);
     }
   }

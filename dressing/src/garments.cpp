@@ -125,6 +125,43 @@ void untangle(std::vector<DressedGarment>& garments, std::size_t k, const MeshDi
   }
 }
 
+/// Where rebuilding leaves a garment crossing itself more often than as authored, it is moved
+/// instead from its rest shape under the placement's global similarity transform (which crosses
+/// itself exactly as authored) towards its placed positions, in kSteps equal steps of each vertex's
+/// straight path, with the simulator's cloth–cloth collisions (cloth/self_collision.h) keeping its
+/// parts their default thickness apart on the way: a vertex stopped by another part tries again at
+/// the next step. The garment ends at its placed positions except where its pieces would pass
+/// through each other, there stopped where they meet, as settling would have them (a few may be
+/// left inside the body, for settling to push out: it can do that, not undo a crossing). Kept
+/// unless it adds crossings with the other garments.
+void untangle_along_path(std::vector<DressedGarment>& garments, std::size_t k) {
+  constexpr int kSteps = 24, kCatchUp = 8;
+  DressedGarment& g = garments[k];
+  if (g.crossings_placed <= g.crossings_authored) return;
+  const int between = crossings_between(garments, &DressedGarment::placed);
+  const Eigen::Matrix4d& T = g.placement.global;
+  const Eigen::MatrixX3d start =
+      ((g.mesh.V * T.topLeftCorner<3, 3>().transpose()).rowwise() + T.topRightCorner<3, 1>().transpose()).eval();
+  SelfCollision collisions(g.mesh.F, g.mesh.num_vertices(), {});
+  const Eigen::VectorXd inverse_mass = Eigen::VectorXd::Ones(g.mesh.num_vertices());
+  Eigen::MatrixX3d x = start;
+  for (int step = 1; step <= kSteps + kCatchUp; ++step) {
+    const double t = std::min(1.0, static_cast<double>(step) / kSteps);
+    Eigen::MatrixX3d next = (1.0 - t) * start + t * g.placed;
+    if (collisions.resolve(x, next, inverse_mass).held) continue;
+    x = std::move(next);
+  }
+  const int crossings = count_intersections(x, g.mesh.F);
+  if (crossings >= g.crossings_placed) return;
+  const Eigen::MatrixX3d placed = g.placed;
+  g.placed = x;
+  if (crossings_between(garments, &DressedGarment::placed) > between) {
+    g.placed = placed;
+    return;
+  }
+  g.crossings_placed = crossings;
+}
+
 /// Part names, as segmentation or a label file gives them, of a garment's legs (trouser legs, skirt
 /// parts) and of its sleeves.
 bool names_legs(const std::string& part) { return part.rfind("leg", 0) == 0 || part.rfind("skirt", 0) == 0; }

@@ -16,6 +16,11 @@ TriangleMesh rest_shape(const DressedGarment& g);
 /// (garments.cpp); updates its placed positions and crossings_placed.
 void untangle(std::vector<DressedGarment>& garments, std::size_t k, const MeshDistance& body, double clearance);
 
+/// Where garment k still crosses itself more often than as authored: moves it onto its placed
+/// positions from a shape crossing itself as authored, its parts kept apart on the way
+/// (garments.cpp); updates its placed positions and crossings_placed.
+void untangle_along_path(std::vector<DressedGarment>& garments, std::size_t k);
+
 /// Edge–triangle crossings between different garments at their positions `at` (placed or dressed).
 int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at);
 

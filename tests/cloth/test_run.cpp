@@ -1,5 +1,5 @@
 // The step loop (cloth/run.h) and the contact safeguards of adaptive stepping: a run stops when
-// the cloth is at rest and says why; a fast particle does not pass through a thin collider; a
+// the cloth is at rest and says why, and fails when its steps stay near the smallest; a fast particle does not pass through a thin collider; a
 // cloth that starts inside a collider is returned outside without a blow-up, and reported.
 #include <gtest/gtest.h>
 
@@ -41,6 +41,32 @@ TEST(Run, StopsWhenTheClothIsAtRestAndSaysWhy) {
   const RunResult full = run(all, r);
   EXPECT_EQ(full.stopped_reason, "duration reached");
   EXPECT_GE(all.time(), 1.0 - 1e-9);
+}
+
+// A run whose steps stay near the simulator's smallest step fails as stalled after the set number
+// of steps, saying so, instead of taking hours of such steps; with the check off it runs its time.
+TEST(Run, StopsAndFailsWhenItsStepsStayNearTheSmallest) {
+  SimulationOptions o;
+  o.adaptive = false;
+  o.dt = 1e-3;
+  o.dt_min = 1e-3;  // every step at the smallest
+  RunOptions r;
+  r.duration = 0.2;
+  r.rest.enabled = false;
+  ClothSimulator sim(square(0.3, 8, {0, 0.5, 0}), o);
+  const RunResult stalled = run(sim, r);
+  EXPECT_FALSE(stalled.ok);
+  EXPECT_TRUE(stalled.stalled);
+  EXPECT_EQ(stalled.totals.steps, r.stall.steps);
+  EXPECT_NEAR(sim.time(), r.stall.steps * o.dt, 1e-9);
+  EXPECT_EQ(stalled.stopped_reason.rfind("stalled: ", 0), 0u) << stalled.stopped_reason;
+
+  r.stall.enabled = false;
+  ClothSimulator all(square(0.3, 8, {0, 0.5, 0}), o);
+  const RunResult full = run(all, r);
+  EXPECT_TRUE(full.ok);
+  EXPECT_EQ(full.stopped_reason, "duration reached");
+  EXPECT_GE(all.time(), 0.2 - 1e-9);
 }
 
 // A cloth falling at 20 m/s onto a plank 4 mm thick, at a fixed 1/60 s (33 cm a step): every

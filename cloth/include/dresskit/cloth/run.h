@@ -22,10 +22,21 @@ struct RestOptions {
   double earliest = 0.1;
 };
 
+/// When a run counts as stalled and fails: its steps have stayed within `factor` of the simulator's
+/// smallest step (SimulationOptions::dt_min) for `steps` steps in a row. The adaptive step falls
+/// that far only where contacts and length limits cannot all hold (a garment too small for the
+/// body pressed against it and itself); at that step a run would take hours of steps for a second.
+struct StallOptions {
+  bool enabled = true;
+  int steps = 50;
+  double factor = 4.0;  ///< [unitless]
+};
+
 struct RunOptions {
   double duration = 2.0;  ///< simulated time at most [s]
   double fps = 24.0;      ///< frames per simulated second [1/s]
   RestOptions rest;
+  StallOptions stall;
 };
 
 /// What the steps of a run did, summed (times: CPU seconds of the stepping thread).
@@ -41,7 +52,8 @@ struct StepTotals {
 
 struct RunResult {
   bool ok = true;              ///< false: a step failed (the simulator keeps the last good state)
-  std::string stopped_reason;  ///< "at rest", "duration reached" or "failed: <why>"
+  std::string stopped_reason;  ///< "at rest", "duration reached", "stalled: <why>" or "failed: <why>"
+  bool stalled = false;        ///< stopped for its steps staying near the smallest (StallOptions)
   std::string failure;         ///< the failed step's reason (empty when ok)
   int frames = 0;              ///< frames handed out after the first (frame 0 is the start)
   double rest_at = -1.0;       ///< simulated time the cloth came to rest [s] (−1: it did not)
@@ -52,7 +64,7 @@ struct RunResult {
 /// RMS speed √(2 E_kin / M) and fastest free particle of the simulator's state [m/s].
 void cloth_speeds(const ClothSimulator& sim, double& mean_speed, double& max_speed);
 
-/// Steps sim until `duration`, a failed step or rest. on_frame(k) is called with k = 0 before the
+/// Steps sim until `duration`, a failed step, a stall or rest. on_frame(k) is called with k = 0 before the
 /// first step and with k = 1, 2, ... at the first state at or after k / fps; on_step (optional)
 /// after every successful step.
 RunResult run(ClothSimulator& sim, const RunOptions& options, const std::function<void(int)>& on_frame = {},

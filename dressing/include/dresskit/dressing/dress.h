@@ -99,8 +99,8 @@ struct DressedGarment {
   Eigen::MatrixX3d placed, dressed;   ///< [m], in mesh's vertex order
   int layer = 0;                      ///< 0 = worn next to the body
   double thickness = 0.0;             ///< the cloth's own thickness from its fabric [m]
-  /// Edge–triangle crossings of its own: as authored, after placement's fit (before its crossing
-  /// regions were rebuilt), placed (handed to settling) and dressed.
+  /// Edge–triangle crossings of its own: as authored, after placement's fit (before untangling),
+  /// placed (handed to settling) and dressed.
   int crossings_authored = 0, crossings_fitted = 0, crossings_placed = 0, crossings_dressed = 0;
   int inside_placed = 0, inside_dressed = 0;  ///< vertices deeper than 2 mm inside the body
   double max_strain_dressed = 0.0;    ///< largest structural strain against the rest shape
