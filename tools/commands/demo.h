@@ -11,7 +11,7 @@
 namespace dresskit::cli {
 
 struct DemoCommand : Command {
-  std::string dir, pose = "a-pose", quality = "balanced";
+  std::string dir, pose = "a-pose", quality = "fast";
   MannequinOptions body;
   GarmentOptions garments;
   double seconds = 0.0;      ///< simulated settling at most [s]; 0: the quality's

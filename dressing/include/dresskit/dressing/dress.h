@@ -49,7 +49,7 @@ struct GarmentFile {
 };
 
 struct DressOptions {
-  DressQuality quality = DressQuality::balanced;
+  DressQuality quality = DressQuality::fast;
   bool settle = true;  ///< false: stop after placement (dressed = placed)
   /// Simulated time settling takes at most [s]; 0 = the quality's (0.5, 1 or 2 s).
   double settle_seconds = 0.0;
@@ -109,7 +109,7 @@ struct DressedGarment {
 
 struct DressResult {
   MeshFile body_file;  ///< as given (without its in-memory mesh)
-  DressQuality quality = DressQuality::balanced;
+  DressQuality quality = DressQuality::fast;
   TriangleMesh body;  ///< as loaded (and cleaned) [m]; labels = its parts
   std::vector<DressPart> body_parts;
   bool body_labels_from_file = false;
