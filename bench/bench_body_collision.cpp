@@ -18,9 +18,9 @@
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/mesh_distance.h"
+#include "dresskit/cloth/run.h"
 #include "dresskit/cloth/scene.h"
 #include "dresskit/cloth/seams.h"
-#include "dresskit/cloth/simulator.h"
 #include "dresskit/mesh/io.h"
 
 using namespace dresskit;
@@ -33,16 +33,15 @@ struct Phases {
   std::string failure;
 };
 
-Phases run(ClothSimulator& sim, int steps) {
+// The phases of the steps after the first quarter of `steps` steps of the simulator's dt.
+Phases run_steps(ClothSimulator& sim, int steps) {
   Phases p;
-  for (int s = 0; s < steps; ++s) {
-    const StepResult r = sim.step();
-    if (!r.ok) {
-      p.failed_at = s;
-      p.failure = r.failure;
-      break;
-    }
-    if (s < steps / 4) continue;
+  RunOptions o;
+  o.duration = steps * sim.options().dt;
+  o.rest.enabled = false;
+  int taken = 0;
+  const RunResult result = run(sim, o, {}, [&](const StepResult& r) {
+    if (taken++ < steps / 4) return;
     p.forces += r.force_seconds;
     p.solve += r.integrate_seconds - r.force_seconds;
     p.limits += r.constraint_seconds;
@@ -50,6 +49,10 @@ Phases run(ClothSimulator& sim, int steps) {
     p.body += r.collision_seconds;
     p.self += r.self_collision_seconds;
     ++p.steps;
+  });
+  if (!result.ok) {
+    p.failed_at = taken;
+    p.failure = result.failure;
   }
   return p;
 }
@@ -129,7 +132,7 @@ int main(int argc, char** argv) {
     o.self_collision = true;
     o.colliders.push_back(Collider::mesh(distance, 0.5));
     ClothSimulator sim(build_cloth(grid, fabric_by_name("11oz-black-denim")), o);
-    const Phases p = run(sim, steps);
+    const Phases p = run_steps(sim, steps);
     int inside = 0;
     Eigen::Vector3d n;
     for (int i = 0; i < sim.positions().rows(); ++i)
@@ -167,7 +170,7 @@ int main(int argc, char** argv) {
       }
     }
     ClothSimulator sim(scene.model, scene.simulation);
-    const Phases p = run(sim, steps);
+    const Phases p = run_steps(sim, steps);
     print(out, "tube", static_cast<int>(scene.model.rest_positions.rows()), p, sim, 0);
   }
   return 0;

@@ -24,7 +24,7 @@
 #include <string>
 #include <vector>
 
-#include "dresskit/cloth/simulator.h"
+#include "dresskit/cloth/run.h"
 
 using namespace dresskit;
 
@@ -50,18 +50,15 @@ std::vector<T> parse_list(const char* text) {
 Run simulate(const ClothModel& model, const std::vector<int>& pins, SimulationOptions o) {
   ClothSimulator sim(model, o);
   sim.set_pinned(pins);
-  const int steps = static_cast<int>(std::lround(1.0 / o.dt));
+  RunOptions run_options;
+  run_options.duration = static_cast<double>(std::lround(1.0 / o.dt)) * o.dt;  // 1 s in whole steps
+  run_options.rest.enabled = false;
   Run run;
   const std::clock_t c0 = std::clock();
   const auto t0 = std::chrono::steady_clock::now();
-  for (int s = 0; s < steps; ++s) {
-    const StepResult r = sim.step();
-    if (!r.ok) {
-      run.ok = false;
-      run.failure = r.failure;
-      break;
-    }
-  }
+  const RunResult result = dresskit::run(sim, run_options);
+  run.ok = result.ok;
+  run.failure = result.failure;
   run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   run.cpu = static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC;
   run.x = sim.positions();

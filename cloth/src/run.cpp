@@ -69,6 +69,15 @@ RunResult run(ClothSimulator& sim, const RunOptions& o, const std::function<void
     }
     result.totals.add(r);
     if (on_step) on_step(r);
+    if (o.fail_if) {
+      const std::string why = o.fail_if();
+      if (!why.empty()) {
+        result.ok = false;
+        result.failure = why;
+        result.stopped_reason = "failed: " + why;
+        break;
+      }
+    }
     if (sim.time() >= start + (result.frames + 1) / o.fps - eps) {
       ++result.frames;
       if (on_frame) on_frame(result.frames);

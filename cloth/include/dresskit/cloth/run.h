@@ -37,6 +37,9 @@ struct RunOptions {
   double fps = 24.0;      ///< frames per simulated second [1/s]
   RestOptions rest;
   StallOptions stall;
+  /// Optional check after every step (after on_step): a non-empty answer fails the run with it as
+  /// the reason (a bench's energy bound, a caller's own limit).
+  std::function<std::string()> fail_if;
 };
 
 /// What the steps of a run did, summed (times: CPU seconds of the stepping thread).
