@@ -16,6 +16,11 @@ inline std::string lower_extension(const std::string& path) {
   return ext;
 }
 
+/// For PLY and OFF files, before assimp reads them (io_headers.cpp): the header ends, its counts fit
+/// in the file's size, and OFF face indices name existing vertices. Throws InputError naming the
+/// file and what is wrong; other formats pass.
+void check_declared_counts(const std::string& path);
+
 /// A directed triangle up to rotation: (a,b,c), (b,c,a) and (c,a,b) give the same key, (a,c,b) not.
 inline std::array<int, 3> directed_triangle_key(int a, int b, int c) {
   if (b < a && b < c) return {b, c, a};

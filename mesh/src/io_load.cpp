@@ -172,6 +172,7 @@ void check_readable(const std::string& path) {
   if (fs::file_size(path, ec) == 0) throw InputError(path + ": empty file");
   std::ifstream probe(path, std::ios::binary);
   if (!probe) throw InputError(path + ": cannot open for reading");
+  detail::check_declared_counts(path);
 }
 
 // Vertex data gathered from the scene graph, with node transforms applied.

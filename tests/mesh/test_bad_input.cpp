@@ -47,6 +47,21 @@ const BadFile kBadFiles[] = {
                          "property list uchar int vertex_indices\nend_header\n"
                          "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n",
      "out_of_range.ply"},
+    // Declared counts the file cannot hold: refused at once, not read for minutes into gigabytes.
+    {"huge.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000\nproperty float x\nproperty float y\n"
+                 "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                 "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n",
+     "declares 1000000000 vertex"},
+    {"huge_binary.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
+                        "property float y\nproperty float z\nend_header\n" + garbage(36),
+     "more than the file's 36 bytes"},
+    // A header whose end is misspelt (assimp looped on it).
+    {"no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                   "property float z\nend_hedaer\n0 0 0\n1 0 0\n0 1 0\n",
+     "no 'end_header' line"},
+    {"huge.off", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000000000 vertices"},
+    {"out_of_range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "face 0 names vertex 7 of 3"},
+    {"negative.off", "OFF\n3 -1 0\n0 0 0\n1 0 0\n0 1 0\n", "is not a whole number"},
     {"mesh.xyz", "1 2 3\n", "unsupported extension"},
     {"garbage.stl", garbage(300), "garbage.stl"},
 };
