@@ -27,6 +27,7 @@
 #include <chrono>
 #include <cstring>
 #include <map>
+#include <sstream>
 #include <unordered_map>
 
 #include "dresskit/mesh/topology.h"
@@ -115,16 +116,35 @@ int remove_repeated_index_polygons(std::vector<Polygon>& polygons) {
   return static_cast<int>(before - polygons.size());
 }
 
+// Fills the boundary loops of at most max_edges edges, except a loop that is the border of an open
+// surface rather than a hole in it: one whose spanned (vector) area is more than half its
+// component's area (a panel's or a single triangle's outline). Filled, such a loop closes the
+// surface onto itself, two sheets back to back, which remeshing then cannot handle.
 void fill_small_holes(SurfaceMesh& sm, int max_edges, CleanupResult& r) {
   std::vector<SurfaceMesh::Halfedge_index> cycles;
   PMP::extract_boundary_cycles(sm, std::back_inserter(cycles));
+  auto component = sm.add_property_map<SurfaceMesh::Face_index, std::size_t>("f:component", 0).first;
+  PMP::connected_components(sm, component);
+  std::vector<double> component_area;
+  for (auto f : sm.faces()) {
+    if (component[f] >= component_area.size()) component_area.resize(component[f] + 1, 0.0);
+    component_area[component[f]] += PMP::face_area(f, sm);
+  }
   for (auto h : cycles) {
     int edges = 0;
+    Kernel::Vector_3 spanned(0, 0, 0);
     for (auto hc : CGAL::halfedges_around_face(h, sm)) {
-      (void)hc;
+      const Point& a = sm.point(sm.source(hc));
+      const Point& b = sm.point(sm.target(hc));
+      spanned = spanned + CGAL::cross_product(a - CGAL::ORIGIN, b - CGAL::ORIGIN);
       ++edges;
     }
     if (edges > max_edges) continue;
+    const double area = 0.5 * std::sqrt(spanned.squared_length());
+    if (area > 0.5 * component_area[component[sm.face(sm.opposite(h))]]) {
+      ++r.borders_left_open;
+      continue;
+    }
     std::vector<SurfaceMesh::Face_index> faces;
     std::vector<SurfaceMesh::Vertex_index> vertices;
     PMP::triangulate_and_refine_hole(sm, h, std::back_inserter(faces), std::back_inserter(vertices));
@@ -243,6 +263,7 @@ std::vector<std::string> CleanupResult::changes() const {
   add(faces_reoriented, "faces reoriented");
   add(holes_filled, "holes filled");
   add(hole_faces_added, "faces added in holes");
+  add(borders_left_open, "borders of open surfaces left open (not holes)");
   add(components_removed, "connected components removed");
   if (remeshed) lines.push_back("remeshed isotropically");
   return lines;
@@ -253,6 +274,24 @@ CleanupResult cleanup_mesh(const TriangleMesh& input, const CleanupOptions& opti
     throw InputError("remesh edge length: " + std::to_string(options.remesh_edge_length) + " m (must be 0 or more)");
   if (options.remesh_iterations < 1 || options.max_hole_edges < 1)
     throw InputError("remesh iterations and largest hole: must be at least 1");
+  if (options.remesh_edge_length > 0.0) {
+    // Equilateral triangles of edge L cover √3/4 L² each: too short an edge would fill the memory
+    // (a body remeshed at 0.1 mm: 6.5 GB before running out).
+    double area = 0.0;
+    for (int f = 0; f < input.num_faces(); ++f)
+      area += 0.5 * (input.V.row(input.F(f, 1)) - input.V.row(input.F(f, 0)))
+                        .cross(input.V.row(input.F(f, 2)) - input.V.row(input.F(f, 0)))
+                        .norm();
+    const double L = options.remesh_edge_length, triangles = area / (std::sqrt(3.0) / 4.0 * L * L);
+    if (triangles > kMaxRemeshTriangles) {
+      const double shortest = std::sqrt(area / (std::sqrt(3.0) / 4.0 * kMaxRemeshTriangles));
+      std::ostringstream why;
+      why << "remesh edge length " << L << " m would make about " << std::llround(triangles)
+          << " triangles of this mesh's " << area << " m² (at most " << std::llround(kMaxRemeshTriangles)
+          << "): use at least " << shortest << " m";
+      throw InputError(why.str());
+    }
+  }
   CleanupResult r;
   auto t0 = Clock::now();
 

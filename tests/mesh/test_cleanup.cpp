@@ -201,4 +201,38 @@ TEST(Cleanup, RefusesAnImpossibleRemeshingLength) {
     o.remesh_edge_length = edge;
     EXPECT_THROW(cleanup_mesh(fixtures::cube(1.0), o), InputError) << edge;
   }
+  // A length whose triangles would fill the memory: the unit cube's 6 m² at 0.5 mm is 55 million.
+  CleanupOptions o;
+  o.remesh_edge_length = 0.0005;
+  try {
+    cleanup_mesh(fixtures::cube(1.0), o);
+    ADD_FAILURE() << "accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("would make about 55425626 triangles"), std::string::npos) << e.what();
+  }
+  o.remesh_edge_length = 0.0017;  // 4.8 million: allowed (not run here: the check comes first)
+  EXPECT_LT(6.0 / (std::sqrt(3.0) / 4.0 * 0.0017 * 0.0017), kMaxRemeshTriangles);
+}
+
+// The outline of an open surface is not a hole: a single triangle and a flat panel stay open when
+// holes are filled (closed onto themselves they were two sheets back to back, and remeshing that
+// crashed), and remesh as open surfaces of the same area.
+TEST(Cleanup, LeavesTheBorderOfAnOpenSurfaceOpen) {
+  TriangleMesh triangle;
+  triangle.V = (Eigen::MatrixX3d(3, 3) << 0, 0, 0, 1, 0, 0, 0, 1, 0).finished();
+  triangle.F = (Eigen::MatrixX3i(1, 3) << 0, 1, 2).finished();
+  TriangleMesh panel = fixtures::cube(1.0);
+  panel.F = panel.F.topRows(2).eval();  // one side of the cube: a square of two triangles
+  panel.quads.resize(0, 4);
+  for (const TriangleMesh& m : {triangle, panel}) {
+    CleanupOptions o;
+    o.fill_holes = true;
+    o.remesh_edge_length = 0.05;
+    const CleanupResult r = cleanup_mesh(m, o);
+    EXPECT_EQ(r.holes_filled, 0);
+    EXPECT_EQ(r.borders_left_open, 1);
+    const TopologyReport t = analyse_topology(r.mesh);
+    EXPECT_EQ(t.num_boundary_loops, 1);
+    EXPECT_NEAR(t.area, m.num_faces() == 1 ? 0.5 : 1.0, 1e-9);
+  }
 }

@@ -7,6 +7,9 @@
 
 namespace dresskit {
 
+/// The most triangles a remeshing may make (about 1 GB of halfedge mesh).
+constexpr double kMaxRemeshTriangles = 5e6;
+
 struct CleanupOptions {
   bool repair_non_manifold = true;   ///< split non-manifold vertices (needed by every later step)
   bool orient = true;                ///< consistent orientation; closed components face outwards
@@ -14,7 +17,9 @@ struct CleanupOptions {
   bool fill_holes = false;           ///< fill boundary loops of at most max_hole_edges edges
   int max_hole_edges = 64;           ///< largest hole filled [edges]; garment openings are larger
   bool keep_largest_component = false;  ///< drop every component but the largest (by faces)
-  double remesh_edge_length = 0.0;   ///< isotropic remeshing target [m]; 0 = no remeshing
+  /// Isotropic remeshing target [m]; 0 = no remeshing. A length that would make more than
+  /// kMaxRemeshTriangles triangles of the mesh's area is refused (InputError naming the shortest).
+  double remesh_edge_length = 0.0;
   int remesh_iterations = 3;         ///< iterations of split/collapse/flip/relax
 };
 
@@ -30,6 +35,7 @@ struct CleanupResult {
   int border_edges_stitched = 0;
   int holes_filled = 0;
   int hole_faces_added = 0;
+  int borders_left_open = 0;  ///< loops not filled: the border of an open surface, not a hole in it
   int components_removed = 0;
   bool remeshed = false;
   double seconds_soup = 0.0;     ///< merging, removals, orientation on the polygon soup
