@@ -85,6 +85,23 @@ double rotation_angle_deg(const Eigen::Matrix4d& T) {
 PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& body,
                               const PlacementOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  // Options a placement cannot use, named before any work (a negative clearance pulled the garment
+  // into the body).
+  auto require = [](bool ok, const char* what, double value) {
+    if (!ok) throw InputError(std::string("placement: ") + what + " " + std::to_string(value) + " is out of range");
+  };
+  require(options.clearance >= 0.0 && std::isfinite(options.clearance), "clearance [m]", options.clearance);
+  require(options.blend_radius >= 0.0 && std::isfinite(options.blend_radius), "blend radius [m]", options.blend_radius);
+  require(options.max_edge_stretch > 0.0 && std::isfinite(options.max_edge_stretch), "largest edge stretch",
+          options.max_edge_stretch);
+  require(std::isfinite(options.layer_gap), "layer gap [m]", options.layer_gap);
+  require(options.max_part_scale_change >= 1.0 && std::isfinite(options.max_part_scale_change),
+          "largest part scale change", options.max_part_scale_change);
+  require(options.max_part_rotation_deg >= 0.0 && options.max_part_rotation_deg <= 180.0,
+          "largest part rotation [degrees]", options.max_part_rotation_deg);
+  require(options.push_iterations >= 0 && options.stretch_sweeps >= 0 && options.min_part_vertices >= 1,
+          "rounds, sweeps or smallest part", std::min({options.push_iterations, options.stretch_sweeps,
+                                                       options.min_part_vertices}));
   if (!garment.has_labels()) throw InputError("garment: no part labels (give --garment-labels)");
   if (!body.has_labels()) throw InputError("body: no part labels (give --body-labels)");
   check_point_set(PointSet{garment.V, {}}, "garment");

@@ -40,14 +40,12 @@ class Reader {
     return path_.empty() ? key : key.empty() ? path_ : path_ + "." + key;
   }
   void allow(std::initializer_list<const char*> keys) const {
-    std::set<std::string> ok(keys.begin(), keys.end());
-    for (const auto& [key, value] : j_.items()) {
-      (void)value;
-      if (!ok.count(key)) {
-        std::string list;
-        for (const auto& k : ok) list += (list.empty() ? "" : ", ") + k;
-        fail("unknown key (known: " + list + ")", key);
-      }
+    const std::set<std::string> ok(keys.begin(), keys.end());
+    for (const auto& item : j_.items()) {
+      if (ok.count(item.key())) continue;
+      std::string list;
+      for (const auto& k : ok) list += (list.empty() ? "" : ", ") + k;
+      fail("unknown key (known: " + list + ")", item.key());
     }
   }
   bool has(const char* key) const { return j_.contains(key); }
@@ -143,15 +141,18 @@ class IndexReader {
   IndexReader(const Reader& cloth, std::vector<Panel> panels, int vertices)
       : cloth_(cloth), panels_(std::move(panels)), vertices_(vertices) {}
   int operator()(const json& p, const char* key) const {
+    auto whole = [](const json& e) {  // beyond int's range, out of range (2^32 is not vertex 0)
+      return static_cast<int>(std::fmax(-2147483648.0, std::fmin(e.get<double>(), 2147483647.0)));
+    };
     int index = -1;
     const bool grid = panels_.size() == 1 && panels_[0].nx > 0;
     if (p.is_number_integer()) {
-      index = p.get<int>();
+      index = whole(p);
     } else if (p.is_array() && (p.size() == 2 || p.size() == 3) && !panels_.empty() && grid == (p.size() == 2)) {
       for (const json& e : p)
         if (!e.is_number_integer()) cloth_.fail("grid indices must be whole numbers", key);
-      const int panel = p.size() == 3 ? p[0].get<int>() : 0;
-      const int i = p[p.size() - 2].get<int>(), j = p[p.size() - 1].get<int>();
+      const int panel = p.size() == 3 ? whole(p[0]) : 0;
+      const int i = whole(p[p.size() - 2]), j = whole(p[p.size() - 1]);
       if (panel < 0 || panel >= static_cast<int>(panels_.size())) {
         cloth_.fail("panel " + std::to_string(panel) + " is out of range", key);
       }

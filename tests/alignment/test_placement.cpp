@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <random>
 
@@ -114,6 +115,27 @@ struct OutfitOnBody {
 
 /// The woman's casualsuit on the child: the cross-body case with a reference.
 OutfitOnBody casualsuit_on_the_child() { return {"female_casualsuit01", "mh_girl_child_11y"}; }
+
+// Options a placement cannot use are refused by name before any work.
+TEST(Placement, RefusesOptionsItCannotUse) {
+  const std::pair<void (*)(PlacementOptions&), const char*> cases[] = {
+      {[](PlacementOptions& o) { o.clearance = -1.0; }, "clearance [m] -1"},
+      {[](PlacementOptions& o) { o.blend_radius = std::nan(""); }, "blend radius"},
+      {[](PlacementOptions& o) { o.max_edge_stretch = 0.0; }, "largest edge stretch"},
+      {[](PlacementOptions& o) { o.max_part_scale_change = 0.5; }, "largest part scale change"},
+      {[](PlacementOptions& o) { o.push_iterations = -2; }, "rounds, sweeps or smallest part -2"},
+  };
+  for (const auto& [set, fragment] : cases) {
+    PlacementOptions o;
+    set(o);
+    try {
+      place_garment(TriangleMesh{}, TriangleMesh{}, o);
+      ADD_FAILURE() << "accepted: " << fragment;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  }
+}
 
 TEST(Placement, CasualsuitOnTheChildAgainstTheReference) {
   DRESSKIT_REQUIRE_DATA();

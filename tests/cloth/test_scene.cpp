@@ -59,6 +59,8 @@ TEST(ClothScene, BadScenesNameTheKey) {
       {R"({"cloth": {)" + grid + R"(}, "simulation": {"dt": 0}})", "simulation.dt"},
       {R"({"cloth": {)" + grid + R"(}, "simulation": {"dt": -1}})", "simulation.dt"},
       {R"({"cloth": {)" + grid + R"(, "pins": [[4, 0]]}})", "cloth.pins"},
+      {R"({"cloth": {)" + grid + R"(, "pins": [4294967296]}})", "cloth.pins: vertex 2147483647 is out of range"},
+      {R"({"cloth": {)" + grid + R"(, "pins": [[4294967296, 0]]}})", "cloth.pins: grid index"},
       {R"({"cloth": {)" + grid + R"(, "total_mass": -2}})", "cloth.total_mass"},
       {R"({"cloth": {)" + grid + R"(}, "colliders": [{"type": "cone"}]})", "colliders[0].type"},
       {R"({"cloth": {)" + grid + R"(}, "colliders": [{"type": "sphere", "radius": 1, "size": 2}]})",
