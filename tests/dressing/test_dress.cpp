@@ -106,13 +106,20 @@ TEST(Dress, PlacementRebuildsTheRegionsItMadeCross) {
 // The same garment in decimetres on a body in metres with another topology: handed to settling
 // crossing itself no more than as authored; worn (near the body), nothing inside it, no more
 // crossings than as authored.
-TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
-  DRESSKIT_REQUIRE_DATA();
+namespace {
+// MakeHuman's female casualsuit (dm) dressed on the GarmentCode mean body (m) in a fabric.
+DressResult casualsuit_on_the_mean_body(const std::string& fabric) {
   const MeshFile body = in_units(body_path("gc_mean_all"), "m");
-  const GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), ""};
+  const GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), fabric};
   DressOptions o;
   o.quality = DressQuality::fast;
-  const DressResult r = dress(body, {garment}, o);
+  return dress(body, {garment}, o);
+}
+}  // namespace
+
+TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
+  DRESSKIT_REQUIRE_DATA();
+  const DressResult r = casualsuit_on_the_mean_body("");
   const DressedGarment& g = r.garments[0];
   EXPECT_NEAR(r.body.V.col(1).maxCoeff() - r.body.V.col(1).minCoeff(), 1.7, 0.2);
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
@@ -149,11 +156,7 @@ TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
 // inside the body and no more crossings than as authored.
 TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   DRESSKIT_REQUIRE_DATA();
-  const MeshFile body = in_units(body_path("gc_mean_all"), "m");
-  const GarmentFile garment{in_units(outfit_path("female_casualsuit01"), "dm"), "11oz-black-denim"};
-  DressOptions o;
-  o.quality = DressQuality::fast;
-  const DressResult r = dress(body, {garment}, o);
+  const DressResult r = casualsuit_on_the_mean_body("11oz-black-denim");
   const DressedGarment& g = r.garments[0];
   EXPECT_TRUE(r.settle.ok) << r.settle.stopped_reason;
   EXPECT_EQ(r.settle.stopped_reason, "duration reached");
