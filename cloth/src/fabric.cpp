@@ -1,6 +1,7 @@
 #include "dresskit/cloth/fabric.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
@@ -75,6 +76,9 @@ Fabric fabric_by_name(const std::string& name) {
 }
 
 std::vector<Fabric> load_fabrics(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path + ": fabric file is not a regular file");
   std::ifstream in(path);
   if (!in) throw InputError(path + ": cannot open fabric file");
   nlohmann::json j;

@@ -127,7 +127,7 @@ TriangleMesh read_grid(const Reader& g, double scale, Panel& panel) {
   if (res.minCoeff() < 2 || res.maxCoeff() > 4096 || res != res.array().round().matrix()) {
     g.fail("must be two whole numbers 2–4096", "resolution");
   }
-  if (size.minCoeff() <= 0) g.fail("must be positive", "size");
+  if (!(size.minCoeff() >= 1e-3 && size.maxCoeff() <= 1e3)) g.fail("must be 1 mm to 1 km (after units)", "size");
   panel.nx = static_cast<int>(res.x());
   panel.ny = static_cast<int>(res.y());
   return make_grid(size, res.cast<int>(), g.vector<3>("center", Eigen::Vector3d::Zero()) * scale,
