@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -442,6 +443,20 @@ TEST(Cli, SegmentWritesLabelsInFileOrderColoursAndOnePartPerObj) {
   EXPECT_EQ(part_faces, j["faces"].get<int>());
   const TriangleMesh coloured = load_mesh(dir.file("seg/segments.ply"));
   EXPECT_EQ(coloured.num_vertices(), static_cast<int>(labels.size()));
+
+  // Into the same folder in two parts: no part file of the six-part run is left, and a file the
+  // tool did not write stays.
+  std::ofstream(dir.file("seg/notes.txt")) << "mine\n";
+  ASSERT_EQ(run(dir, "segment " + body + " --units dm --up +y --parts 2 -o " + dir.file("seg")).code, 0);
+  const auto two = nlohmann::json::parse(slurp(dir.file("seg/labels.json")))["part_names"].get<std::vector<std::string>>();
+  std::vector<std::string> objs;
+  for (const auto& entry : std::filesystem::directory_iterator(dir.file("seg")))
+    if (entry.path().extension() == ".obj") objs.push_back(entry.path().stem().string());
+  std::sort(objs.begin(), objs.end());
+  std::vector<std::string> expected = two;
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(objs, expected);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("seg/notes.txt")));
 }
 
 TEST(Cli, SegmentBadInputExits2WithOneLineAndNoOutput) {

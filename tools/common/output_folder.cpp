@@ -2,10 +2,16 @@
 
 #include <unistd.h>
 
+#include <fstream>
+#include <set>
+
 #include "dresskit/mesh/errors.h"
 
 namespace dresskit::cli {
 namespace fs = std::filesystem;
+namespace {
+const char* const kOutputList = ".dress-a-mesh-outputs";
+}  // namespace
 
 void write_folder(const std::string& dir, const std::function<void(const fs::path&)>& write,
                   const std::vector<std::string>& inputs) {
@@ -26,11 +32,31 @@ void write_folder(const std::string& dir, const std::function<void(const fs::pat
           throw InputError(out.string() + ": refusing to overwrite the input " + input);
       }
     }
+    // What this run wrote, listed in the folder: the next run into it removes what it listed and
+    // does not write again (a segmentation into fewer parts leaves no part files of the last one),
+    // and nothing it did not write.
+    std::set<std::string> written;
+    for (const auto& entry : fs::directory_iterator(temp)) written.insert(entry.path().filename().string());
+    {
+      std::ofstream list(temp / kOutputList);
+      for (const std::string& name : written) list << name << '\n';
+      if (!list) throw OutputError(dir + ": cannot write " + kOutputList);
+    }
     if (!fs::exists(target)) {
       fs::rename(temp, target);
       return;
     }
     if (!fs::is_directory(target)) throw OutputError(dir + ": exists and is not a directory");
+    std::ifstream previous(target / kOutputList);
+    for (std::string name; std::getline(previous, name);) {
+      const fs::path old = target / name;
+      if (name.empty() || name.find('/') != std::string::npos || name == "." || name == ".." ||
+          written.count(name))
+        continue;
+      bool input = false;
+      for (const std::string& in : inputs) input = input || (fs::exists(old) && fs::equivalent(old, in, ec));
+      if (!input) fs::remove_all(old, ec);
+    }
     for (const auto& entry : fs::directory_iterator(temp))
       fs::rename(entry.path(), target / entry.path().filename());
     fs::remove(temp);

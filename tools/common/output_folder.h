@@ -1,7 +1,9 @@
 #pragma once
 // Writing a command's outputs so that they appear together or not at all: everything is written
 // into a fresh temporary folder beside DIR, then moved into DIR (created when missing); on any
-// failure the temporary folder is removed and DIR is left as it was.
+// failure the temporary folder is removed and DIR is left as it was. DIR keeps a list of what the
+// last run wrote (.dress-a-mesh-outputs); a later run removes the files of that list it does not
+// write again, so that no output of an earlier run is left beside a new one.
 #include <filesystem>
 #include <functional>
 #include <string>
