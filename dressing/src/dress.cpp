@@ -481,24 +481,20 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         models.push_back(build_cloth(rest_shape(result.garments[k]), fabrics[k]));
       const std::vector<int> first = garment_offsets(models);
       const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
-      // Trousers and skirts stay up by their waistband, held as by a belt.
-      std::vector<int> belt;
-      std::string held;
-      for (std::size_t k = 0; k < result.garments.size(); ++k) {
-        DressedGarment& g = result.garments[k];
-        const std::vector<int> band = waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside);
-        g.waistband_vertices = static_cast<int>(band.size());
-        for (int v : band) belt.push_back(first[k] + v);
-        if (!band.empty()) held += "; waistband of " + g.name + " held (" + std::to_string(band.size()) + " vertices)";
-      }
       RunOptions run_options;
       run_options.duration = duration;
       std::optional<ClothSimulator> sim;
       auto settle = [&] {
         sim.emplace(model, o);
         Eigen::MatrixX3d x(model.rest_positions.rows(), 3);
-        for (std::size_t k = 0; k < result.garments.size(); ++k)
-          x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
+        std::vector<int> belt;  // trousers and skirts stay up by their waistband, held as by a belt
+        for (std::size_t k = 0; k < result.garments.size(); ++k) {
+          DressedGarment& g = result.garments[k];
+          x.middleRows(first[k], first[k + 1] - first[k]) = g.placed;
+          const std::vector<int> band = waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside);
+          g.waistband_vertices = static_cast<int>(band.size());
+          for (int v : band) belt.push_back(first[k] + v);
+        }
         sim->set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
         if (!belt.empty()) sim->set_pinned(belt);
         result.settle = run(*sim, run_options, {}, [&](const StepResult&) {
@@ -511,6 +507,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       // placement with the crossing regions rebuilt (crossing itself more often, which settling
       // does not undo, but free to settle).
       bool retried = false;
+      std::string held;
       if (result.settle.stalled) {
         for (std::size_t k = 0; k < result.garments.size(); ++k) {
           DressedGarment& g = result.garments[k];
@@ -525,11 +522,15 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         }
       }
       result.settled = true;
+      std::string belts;
       for (std::size_t k = 0; k < result.garments.size(); ++k) {
         DressedGarment& g = result.garments[k];
         g.dressed = sim->positions().middleRows(first[k], first[k + 1] - first[k]);
         if (retried) g.inside_placed = surface_fit(g.placed, inside).inside;
+        if (g.waistband_vertices > 0)
+          belts += "; waistband of " + g.name + " held (" + std::to_string(g.waistband_vertices) + " vertices)";
       }
+      held = belts + held;
       stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim->time()) +
                            " s simulated, " + result.settle.stopped_reason + held);
     }
