@@ -69,6 +69,11 @@ import numpy as np
 from mathutils import Vector
 from mathutils.bvhtree import BVHTree
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_common import (add_cloth, add_grid, grid_fields, lengths, mesh_arrays, new_scene,  # noqa: E402
+                            print_result, quads_to_tris, run_fields, run_frames, self_intersection_fields,
+                            self_intersections, settings_fields, settings_text, strain, write_obj)
+
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DATA = os.environ.get("DRESSKIT_DATA_DIR") or os.path.normpath(os.path.join(REPO, "..", "shared", "data"))
 FPS = 24
@@ -109,14 +114,6 @@ def parse_args():
     return args
 
 
-def cli_threads():
-    argv = sys.argv[:sys.argv.index("--")] if "--" in sys.argv else sys.argv
-    for i, a in enumerate(argv[:-1]):
-        if a in ("--threads", "-t"):
-            return int(argv[i + 1])
-    return None
-
-
 def to_blender(p):
     """dresskit (x, y, z), Y up -> Blender (x, -z, y), Z up."""
     p = np.asarray(p, dtype=float)
@@ -127,13 +124,6 @@ def to_dresskit(p):
     """Blender (x, y, z) -> dresskit (x, z, -y)."""
     p = np.asarray(p, dtype=float)
     return np.stack([p[..., 0], p[..., 2], -p[..., 1]], axis=-1)
-
-
-def clear_scene():
-    for ob in list(bpy.data.objects):
-        bpy.data.objects.remove(ob, do_unlink=True)
-    for me in list(bpy.data.meshes):
-        bpy.data.meshes.remove(me)
 
 
 def read_obj(path, units):
@@ -176,43 +166,6 @@ def add_body(verts_dk, tris):
     return ob, vb
 
 
-def add_grid(n, size, center_b):
-    # Blender 3.x: x_subdivisions is the number of vertices per side minus one (older versions: the
-    # number of vertices). Try both and assert the vertex count.
-    for subdiv in (n - 1, n):
-        bpy.ops.mesh.primitive_grid_add(x_subdivisions=subdiv, y_subdivisions=subdiv, size=size,
-                                        location=tuple(center_b))
-        ob = bpy.context.active_object
-        if len(ob.data.vertices) == n * n:
-            break
-        bpy.data.objects.remove(ob, do_unlink=True)
-    else:
-        raise RuntimeError("could not make a %dx%d grid" % (n, n))
-    me = ob.data
-    assert len(me.vertices) == n * n, len(me.vertices)
-    assert len(me.edges) == 2 * n * (n - 1), len(me.edges)
-    assert len(me.polygons) == (n - 1) ** 2 and all(len(p.vertices) == 4 for p in me.polygons)
-    assert abs(ob.dimensions.x - size) < 1e-6 and abs(ob.dimensions.y - size) < 1e-6
-    ob.name = "Cloth"
-    return ob, subdiv
-
-
-def world_coords(ob, depsgraph):
-    ob_eval = ob.evaluated_get(depsgraph)
-    me = ob_eval.to_mesh()
-    co = np.empty(len(me.vertices) * 3)
-    me.vertices.foreach_get("co", co)
-    ob_eval.to_mesh_clear()
-    co = co.reshape(-1, 3)
-    m = np.array(ob.matrix_world)
-    return co @ m[:3, :3].T + m[:3, 3]
-
-
-def strain(co, pairs, rest):
-    s = np.linalg.norm(co[pairs[:, 0]] - co[pairs[:, 1]], axis=1) / rest - 1.0
-    return float(s.max()), float(s.mean()), float(s.min())
-
-
 def crossings(tree, origin, direction):
     n, o = 0, Vector(origin)
     for _ in range(10000):
@@ -235,63 +188,6 @@ def inside_depths(tree, lo, hi, co):
         if odd >= 2:
             depths.append(tree.find_nearest(Vector(p))[3])
     return np.array(depths), len(cand)
-
-
-def seg_tri(p, q, a, b, c, eps=1e-12):
-    """Does segment pq cross triangle abc (Moller-Trumbore, parameter in [0, 1])?"""
-    d = q - p
-    e1, e2 = b - a, c - a
-    h = np.cross(d, e2)
-    det = e1.dot(h)
-    if abs(det) < eps:
-        return False
-    f = 1.0 / det
-    s = p - a
-    u = f * s.dot(h)
-    if u < 0.0 or u > 1.0:
-        return False
-    qv = np.cross(s, e1)
-    v = f * d.dot(qv)
-    if v < 0.0 or u + v > 1.0:
-        return False
-    t = f * e2.dot(qv)
-    return 0.0 <= t <= 1.0
-
-
-def quads_to_tris(quads):
-    return np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
-
-
-def self_intersections(co, tris):
-    """(triangle pairs sharing no vertex whose boxes overlap, edge-triangle crossings): an edge of one
-    triangle of an overlapping pair crossing the other triangle, the edge sharing no vertex with it
-    (the triangles may share one); each (edge, triangle) counted once."""
-    tree = BVHTree.FromPolygons([tuple(v) for v in co], tris.tolist(), all_triangles=True, epsilon=0.0)
-    tri_pairs, edge_tri = set(), set()
-    for i, j in tree.overlap(tree):
-        if i == j:
-            continue
-        if not set(tris[i]) & set(tris[j]):
-            tri_pairs.add((min(i, j), max(i, j)))
-        for a, b in ((i, j), (j, i)):
-            ta, tb = tris[a], tris[b]
-            sb = set(int(v) for v in tb)
-            for k in range(3):
-                e = tuple(sorted((int(ta[k]), int(ta[(k + 1) % 3]))))
-                if e[0] in sb or e[1] in sb or (e, int(b)) in edge_tri:
-                    continue
-                if seg_tri(co[e[0]], co[e[1]], co[tb[0]], co[tb[1]], co[tb[2]]):
-                    edge_tri.add((e, int(b)))
-    return len(tri_pairs), len(edge_tri)
-
-
-def write_obj(path, co, quads):
-    with open(path, "w") as f:
-        f.write("# Blender %s cloth, final frame, dresskit axes (Y up)\n" % bpy.app.version_string)
-        for x, y, z in co:
-            f.write("v %.7f %.7f %.7f\n" % (x, z, -y))
-        for q in quads:
-            f.write("f %d %d %d %d\n" % tuple(int(v) + 1 for v in q))
 
 
 CSV_HEADER = ("setting,blender_settings,cpu_seconds_per_frame,wall_seconds_per_frame,"
@@ -399,10 +295,7 @@ def main():
     os.makedirs(args.out, exist_ok=True)
     load_start = os.getloadavg()
     frame_end = FRAME_START + int(round(args.seconds * FPS))
-    clear_scene()
-    scene = bpy.context.scene
-    scene.render.fps, scene.render.fps_base = FPS, 1.0
-    scene.frame_start, scene.frame_end = FRAME_START, frame_end
+    scene = new_scene(FPS, FRAME_START, frame_end)
 
     body_dk, body_tris = read_obj(args.body, args.body_units)
     body, body_b = add_body(body_dk, body_tris)
@@ -414,51 +307,17 @@ def main():
     cloth, subdiv = add_grid(n_side, args.size, center_b)
     density = fabric_density(args.fabrics, args.fabric)
     total_mass = density * args.size * args.size
-    mod = cloth.modifiers.new("Cloth", "CLOTH")
-    cs, cc = mod.settings, mod.collision_settings
     n = len(cloth.data.vertices)
-    cs.mass = total_mass / n
-    if args.air_damping is not None:
-        cs.air_damping = args.air_damping
-    if args.gravity is not None:
-        scene.gravity = (0.0, 0.0, args.gravity)
-    if args.quality is not None:
-        cs.quality = args.quality
-    cc.use_self_collision = args.self_collision
-    mod.point_cache.frame_start, mod.point_cache.frame_end = FRAME_START, frame_end
+    mod = add_cloth(cloth, scene, total_mass / n, FRAME_START, frame_end, quality=args.quality,
+                    air_damping=args.air_damping, gravity=args.gravity, self_collision=args.self_collision)
+    cs, cc = mod.settings, mod.collision_settings
 
-    me = cloth.data
-    rest = np.empty(n * 3)
-    me.vertices.foreach_get("co", rest)
-    rest = rest.reshape(-1, 3)
-    edges = np.empty(len(me.edges) * 2, dtype=np.int64)
-    me.edges.foreach_get("vertices", edges)
-    edges = edges.reshape(-1, 2)
-    quads = np.empty(len(me.polygons) * 4, dtype=np.int64)
-    me.polygons.foreach_get("vertices", quads)
-    quads = quads.reshape(-1, 4)
-    rest_e = np.linalg.norm(rest[edges[:, 0]] - rest[edges[:, 1]], axis=1)
+    rest, edges, quads = mesh_arrays(cloth.data)
+    rest_e = lengths(rest, edges)
 
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    per_frame = []
-    sim_wall = sim_cpu = 0.0
-    first_wall = first_cpu = 0.0
-    metrics_wall = 0.0
-    start_y = None
-    for f in range(FRAME_START, frame_end + 1):
-        w0, c0 = time.perf_counter(), time.process_time()
-        scene.frame_set(f)
-        co = world_coords(cloth, depsgraph)   # forces the evaluated mesh, included in the timing
-        dw, dc = time.perf_counter() - w0, time.process_time() - c0
-        if f == FRAME_START:
-            first_wall, first_cpu = dw, dc
-            start_y = float(co[:, 2].mean())
-        else:
-            sim_wall += dw
-            sim_cpu += dc
-        m0 = time.perf_counter()
+    def measure(f, co, wall_s, cpu_s):
         e_max, e_mean, e_min = strain(co, edges, rest_e)
-        fm = {"frame": f, "wall_s": dw, "cpu_s": dc, "structural_strain_max": e_max,
+        fm = {"frame": f, "wall_s": wall_s, "cpu_s": cpu_s, "structural_strain_max": e_max,
               "structural_strain_mean": e_mean, "structural_strain_min": e_min,
               "mean_y": float(co[:, 2].mean()), "lowest_y": float(co[:, 2].min())}
         if (f - FRAME_START) % INSIDE_EVERY == 0 or f == frame_end:
@@ -466,25 +325,20 @@ def main():
             fm.update(in_bbox=n_cand, inside=int(len(depths)),
                       inside_2mm=int((depths > INSIDE_DEPTH).sum()),
                       deepest_inside=float(depths.max()) if len(depths) else 0.0)
-        per_frame.append(fm)
-        metrics_wall += time.perf_counter() - m0
+        return fm
 
+    per_frame, co, timing = run_frames(scene, cloth, FRAME_START, frame_end, measure)
     n_sim = frame_end - FRAME_START
     final = per_frame[-1]
+    start_y = per_frame[0]["mean_y"]
     drop = float(start_y - co[:, 2].mean())
-    t0 = time.perf_counter()
-    tri_pairs, edge_tri = self_intersections(co, quads_to_tris(quads))
-    isect_wall = time.perf_counter() - t0
+    isect = self_intersection_fields(co, quads_to_tris(quads))
+    edge_tri = isect["final_self_intersecting_edge_triangle_pairs"]
     write_obj(os.path.join(args.out, "final.obj"), co, quads)
     tested = [p for p in per_frame if "inside" in p]
 
-    bc = body.collision
     report = {
-        "blender_version": bpy.app.version_string,
-        "threads_cli": cli_threads(),
-        "render_threads": scene.render.threads,
-        "cpu_affinity": sorted(os.sched_getaffinity(0)),
-        "loadavg_start": load_start, "loadavg_end": os.getloadavg(),
+        **run_fields(scene, load_start),
         "body": {"path": os.path.abspath(args.body), "units_m": args.body_units,
                  "vertices": len(body_b), "triangles": len(body_tris),
                  "bbox_min_dresskit": to_dresskit(lo).tolist(), "bbox_max_dresskit": to_dresskit(hi).tolist()},
@@ -493,12 +347,8 @@ def main():
         "quality": cs.quality, "self_collision": cc.use_self_collision,
         "frames": [FRAME_START, frame_end], "simulated_frames": n_sim, "simulated_seconds": n_sim / FPS,
         "fps": FPS,
-        "grid": {"vertices": n, "edges": len(edges), "quads": len(quads), "x_subdivisions_used": subdiv},
-        "vertex_mass": cs.mass, "total_mass": cs.mass * n,
-        "total_wall_s": sim_wall, "total_cpu_s": sim_cpu,
-        "seconds_per_frame_wall": sim_wall / n_sim, "seconds_per_frame_cpu": sim_cpu / n_sim,
-        "first_frame_wall_s": first_wall, "first_frame_cpu_s": first_cpu,
-        "metrics_wall_s_untimed": metrics_wall,
+        **grid_fields(cs, n, edges, quads, subdiv),
+        **timing,
         "final_structural_strain_max": final["structural_strain_max"],
         "final_structural_strain_mean": final["structural_strain_mean"],
         "final_structural_strain_min": final["structural_strain_min"],
@@ -510,47 +360,27 @@ def main():
         "deepest_inside_over_tested_frames_m": max(p["deepest_inside"] for p in tested),
         "inside_tested_frames": [p["frame"] for p in tested],
         "start_mean_y": start_y, "final_mean_drop": drop, "final_lowest_y": final["lowest_y"],
-        "final_self_intersecting_triangle_pairs": tri_pairs,
-        "final_self_intersecting_edge_triangle_pairs": edge_tri,
-        "self_intersection_check_wall_s": isect_wall,
-        "cloth_settings": {k: getattr(cs, k) for k in (
-            "quality", "mass", "air_damping", "tension_stiffness", "compression_stiffness",
-            "shear_stiffness", "bending_stiffness", "tension_damping", "compression_damping",
-            "shear_damping", "bending_damping", "bending_model", "time_scale", "use_internal_springs",
-            "use_pressure", "use_dynamic_mesh", "use_sewing_springs")},
-        "collision_settings": {k: getattr(cc, k) for k in (
-            "use_collision", "collision_quality", "distance_min", "impulse_clamp", "use_self_collision",
-            "self_distance_min", "self_friction", "self_impulse_clamp", "friction")},
-        "collider_settings": {k: getattr(bc, k) for k in (
-            "thickness_outer", "thickness_inner", "damping", "cloth_friction", "use_culling")},
+        **isect,
+        **settings_fields(mod, body),
         "gravity": list(scene.gravity),
         "per_frame": per_frame,
     }
     with open(os.path.join(args.out, "blender_report.json"), "w") as f:
         json.dump(report, f, indent=1)
     if args.csv:
-        settings = "%s, vertex mass %g kg" % (args.fabric, cs.mass)
-        if args.quality is not None:
-            settings += ", quality %d" % cs.quality
-        if args.air_damping is not None:
-            settings += ", air damping %g" % cs.air_damping
-        if args.gravity is not None:
-            settings += ", gravity %g" % args.gravity
-        if cc.use_self_collision:
-            settings += ", self collision (distance %g)" % cc.self_distance_min
+        settings = "%s, %s" % (args.fabric, settings_text(mod, args.quality, args.air_damping, args.gravity))
         append_csv(args.csv, '%s,%s,%.4f,%.4f,%.3f,%d,%.4f,%.4f,%d,%.1f,%d,%d,%.3f,%.3f\n' % (
             csv_quote(args.label), csv_quote(settings), report["seconds_per_frame_cpu"],
             report["seconds_per_frame_wall"], n_sim / FPS, n_sim, report["final_structural_strain_max"],
             report["max_structural_strain_all_frames"], report["final_vertices_inside_body_2mm"],
             1e3 * report["final_deepest_inside_m"], report["max_inside_2mm_over_tested_frames"],
             edge_tri, drop, report["final_lowest_y"]))
-    print("RESULT %s: %.4f s/frame wall, %.4f s/frame cpu, final max strain %.4f (all frames %.4f), "
-          "inside >2 mm %d (max over frames %d), deepest %.1f mm, self crossings %d, "
-          "mean drop %.3f m, lowest y %.3f m" % (
-              args.out, report["seconds_per_frame_wall"], report["seconds_per_frame_cpu"],
-              report["final_structural_strain_max"], report["max_structural_strain_all_frames"],
-              report["final_vertices_inside_body_2mm"], report["max_inside_2mm_over_tested_frames"],
-              1e3 * report["final_deepest_inside_m"], edge_tri, drop, report["final_lowest_y"]))
+    print_result(args.out, report, "final max strain %.4f (all frames %.4f), "
+                 "inside >2 mm %d (max over frames %d), deepest %.1f mm, self crossings %d, "
+                 "mean drop %.3f m, lowest y %.3f m", (
+                     report["final_structural_strain_max"], report["max_structural_strain_all_frames"],
+                     report["final_vertices_inside_body_2mm"], report["max_inside_2mm_over_tested_frames"],
+                     1e3 * report["final_deepest_inside_m"], edge_tri, drop, report["final_lowest_y"]))
 
 
 if __name__ == "__main__":

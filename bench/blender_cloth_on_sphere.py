@@ -34,11 +34,14 @@ import argparse
 import json
 import os
 import sys
-import time
 
 import bpy
 import numpy as np
-from mathutils.bvhtree import BVHTree
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from blender_common import (add_cloth, add_grid, grid_fields, lengths, mesh_arrays,  # noqa: E402
+                            new_scene, print_result, quads_to_tris, run_fields, run_frames,
+                            self_intersection_fields, settings_fields, settings_text, strain, write_obj)
 
 GRID_N = 64                 # vertices per side
 GRID_SIZE = 1.0             # m
@@ -68,42 +71,6 @@ def parse_args():
     return p.parse_args(argv)
 
 
-def cli_threads():
-    argv = sys.argv[:sys.argv.index("--")] if "--" in sys.argv else sys.argv
-    for i, a in enumerate(argv[:-1]):
-        if a in ("--threads", "-t"):
-            return int(argv[i + 1])
-    return None
-
-
-def clear_scene():
-    for ob in list(bpy.data.objects):
-        bpy.data.objects.remove(ob, do_unlink=True)
-    for me in list(bpy.data.meshes):
-        bpy.data.meshes.remove(me)
-
-
-def add_grid():
-    # Blender 3.x: x_subdivisions is the number of vertices per side minus one (older versions: the
-    # number of vertices). Try both and assert the vertex count.
-    for subdiv in (GRID_N - 1, GRID_N):
-        bpy.ops.mesh.primitive_grid_add(x_subdivisions=subdiv, y_subdivisions=subdiv, size=GRID_SIZE,
-                                        location=(0.0, 0.0, CLOTH_Z))
-        ob = bpy.context.active_object
-        if len(ob.data.vertices) == GRID_N * GRID_N:
-            break
-        bpy.data.objects.remove(ob, do_unlink=True)
-    else:
-        raise RuntimeError("could not make a %dx%d grid" % (GRID_N, GRID_N))
-    me = ob.data
-    assert len(me.vertices) == GRID_N * GRID_N, len(me.vertices)
-    assert len(me.edges) == 2 * GRID_N * (GRID_N - 1), len(me.edges)
-    assert len(me.polygons) == (GRID_N - 1) ** 2 and all(len(p.vertices) == 4 for p in me.polygons)
-    assert abs(ob.dimensions.x - GRID_SIZE) < 1e-6 and abs(ob.dimensions.y - GRID_SIZE) < 1e-6
-    ob.name = "Cloth"
-    return ob, subdiv
-
-
 def add_colliders():
     bpy.ops.mesh.primitive_uv_sphere_add(segments=64, ring_count=32, radius=SPHERE_R, location=(0, 0, 0))
     sphere = bpy.context.active_object
@@ -117,22 +84,6 @@ def add_colliders():
     return sphere, floor
 
 
-def world_coords(ob, depsgraph):
-    ob_eval = ob.evaluated_get(depsgraph)
-    me = ob_eval.to_mesh()
-    co = np.empty(len(me.vertices) * 3)
-    me.vertices.foreach_get("co", co)
-    ob_eval.to_mesh_clear()
-    co = co.reshape(-1, 3)
-    m = np.array(ob.matrix_world)
-    return co @ m[:3, :3].T + m[:3, 3]
-
-
-def strain(co, pairs, rest):
-    s = np.linalg.norm(co[pairs[:, 0]] - co[pairs[:, 1]], axis=1) / rest - 1.0
-    return float(s.max()), float(s.mean()), float(s.min())
-
-
 def frame_metrics(co, edges, rest_e, diags, rest_d):
     r = np.linalg.norm(co, axis=1)
     e_max, e_mean, e_min = strain(co, edges, rest_e)
@@ -144,121 +95,36 @@ def frame_metrics(co, edges, rest_e, diags, rest_d):
             "min_z": float(co[:, 2].min()), "min_height_above_floor": float(co[:, 2].min() - FLOOR_Z)}
 
 
-def seg_tri(p, q, a, b, c, eps=1e-12):
-    """Does segment pq cross triangle abc (Moller-Trumbore, parameter in [0, 1])?"""
-    d = q - p
-    e1, e2 = b - a, c - a
-    h = np.cross(d, e2)
-    det = e1.dot(h)
-    if abs(det) < eps:
-        return False
-    f = 1.0 / det
-    s = p - a
-    u = f * s.dot(h)
-    if u < 0.0 or u > 1.0:
-        return False
-    qv = np.cross(s, e1)
-    v = f * d.dot(qv)
-    if v < 0.0 or u + v > 1.0:
-        return False
-    t = f * e2.dot(qv)
-    return 0.0 <= t <= 1.0
-
-
-def self_intersections(co, quads):
-    tris = np.concatenate([quads[:, [0, 1, 2]], quads[:, [0, 2, 3]]])
-    tree = BVHTree.FromPolygons([tuple(v) for v in co], tris.tolist(), all_triangles=True, epsilon=0.0)
-    tri_pairs = set()
-    for i, j in tree.overlap(tree):
-        if i == j or set(tris[i]) & set(tris[j]):
-            continue
-        tri_pairs.add((min(i, j), max(i, j)))
-    edge_tri = set()
-    for i, j in tri_pairs:
-        for a, b in ((i, j), (j, i)):
-            ta, tb = tris[a], tris[b]
-            for k in range(3):
-                e = tuple(sorted((int(ta[k]), int(ta[(k + 1) % 3]))))
-                if seg_tri(co[e[0]], co[e[1]], co[tb[0]], co[tb[1]], co[tb[2]]):
-                    edge_tri.add((e, int(b)))
-    return len(tri_pairs), len(edge_tri)
-
-
-def write_obj(path, co, quads):
-    with open(path, "w") as f:
-        f.write("# Blender %s cloth, final frame, dresskit axes (Y up)\n" % bpy.app.version_string)
-        for x, y, z in co:
-            f.write("v %.7f %.7f %.7f\n" % (x, z, -y))
-        for q in quads:
-            f.write("f %d %d %d %d\n" % tuple(int(v) + 1 for v in q))
-
-
 def main():
     args = parse_args()
     os.makedirs(args.out, exist_ok=True)
     load_start = os.getloadavg()
-    clear_scene()
-    scene = bpy.context.scene
-    scene.render.fps, scene.render.fps_base = FPS, 1.0
-    scene.frame_start, scene.frame_end = FRAME_START, FRAME_END
+    scene = new_scene(FPS, FRAME_START, FRAME_END)
 
-    cloth, subdiv = add_grid()
+    cloth, subdiv = add_grid(GRID_N, GRID_SIZE, (0.0, 0.0, CLOTH_Z))
     sphere, floor = add_colliders()
-    mod = cloth.modifiers.new("Cloth", "CLOTH")
-    cs, cc = mod.settings, mod.collision_settings
     n = len(cloth.data.vertices)
-    cs.mass = args.vertex_mass
-    if args.air_damping is not None:
-        cs.air_damping = args.air_damping
-    if args.gravity is not None:
-        scene.gravity = (0.0, 0.0, args.gravity)
-    if args.quality is not None:
-        cs.quality = args.quality
-    cc.use_self_collision = args.self_collision
-    if args.self_distance is not None:
-        cc.self_distance_min = args.self_distance
-    mod.point_cache.frame_start, mod.point_cache.frame_end = FRAME_START, FRAME_END
+    mod = add_cloth(cloth, scene, args.vertex_mass, FRAME_START, FRAME_END, quality=args.quality,
+                    air_damping=args.air_damping, gravity=args.gravity, self_collision=args.self_collision,
+                    self_distance=args.self_distance)
+    cs, cc = mod.settings, mod.collision_settings
 
-    me = cloth.data
-    rest = np.empty(n * 3)
-    me.vertices.foreach_get("co", rest)
-    rest = rest.reshape(-1, 3)
-    edges = np.empty(len(me.edges) * 2, dtype=np.int64)
-    me.edges.foreach_get("vertices", edges)
-    edges = edges.reshape(-1, 2)
-    quads = np.empty(len(me.polygons) * 4, dtype=np.int64)
-    me.polygons.foreach_get("vertices", quads)
-    quads = quads.reshape(-1, 4)
+    rest, edges, quads = mesh_arrays(cloth.data)
     diags = np.concatenate([quads[:, [0, 2]], quads[:, [1, 3]]])
-    rest_e = np.linalg.norm(rest[edges[:, 0]] - rest[edges[:, 1]], axis=1)
-    rest_d = np.linalg.norm(rest[diags[:, 0]] - rest[diags[:, 1]], axis=1)
+    rest_e = lengths(rest, edges)
+    rest_d = lengths(rest, diags)
 
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    per_frame = []
-    sim_wall = sim_cpu = 0.0
-    first_wall = first_cpu = 0.0
-    metrics_wall = 0.0
-    for f in range(FRAME_START, FRAME_END + 1):
-        w0, c0 = time.perf_counter(), time.process_time()
-        scene.frame_set(f)
-        co = world_coords(cloth, depsgraph)   # forces the evaluated mesh, included in the timing
-        dw, dc = time.perf_counter() - w0, time.process_time() - c0
-        if f == FRAME_START:
-            first_wall, first_cpu = dw, dc
-        else:
-            sim_wall += dw
-            sim_cpu += dc
-        m0 = time.perf_counter()
+    def measure(f, co, wall_s, cpu_s):
         fm = frame_metrics(co, edges, rest_e, diags, rest_d)
-        fm.update(frame=f, wall_s=dw, cpu_s=dc)
-        per_frame.append(fm)
-        metrics_wall += time.perf_counter() - m0
+        fm.update(frame=f, wall_s=wall_s, cpu_s=cpu_s)
+        return fm
 
+    per_frame, co, timing = run_frames(scene, cloth, FRAME_START, FRAME_END, measure)
     n_sim = FRAME_END - FRAME_START
     drop = float(CLOTH_Z - co[:, 2].mean())
-    t0 = time.perf_counter()
-    tri_pairs, edge_tri = self_intersections(co, quads)
-    isect_wall = time.perf_counter() - t0
+    isect = self_intersection_fields(co, quads_to_tris(quads), adjacent=False)
+    tri_pairs = isect["final_self_intersecting_triangle_pairs"]
+    edge_tri = isect["final_self_intersecting_edge_triangle_pairs"]
     write_obj(os.path.join(args.out, "final.obj"), co, quads)
     final = per_frame[-1]
     late = [p for p in per_frame if p["frame"] > FRAME_END - FPS // 2]
@@ -266,21 +132,12 @@ def main():
     def late_mean(key):
         return sum(p[key] for p in late) / len(late)
 
-    sc = sphere.collision
     report = {
-        "blender_version": bpy.app.version_string,
-        "threads_cli": cli_threads(),
-        "render_threads": scene.render.threads,   # what Blender's thread pool reports (honours --threads)
-        "cpu_affinity": sorted(os.sched_getaffinity(0)),
-        "loadavg_start": load_start, "loadavg_end": os.getloadavg(),
+        **run_fields(scene, load_start),
         "quality": cs.quality, "self_collision": cc.use_self_collision,
         "frames": [FRAME_START, FRAME_END], "simulated_frames": n_sim, "fps": FPS,
-        "grid": {"vertices": n, "edges": len(edges), "quads": len(quads), "x_subdivisions_used": subdiv},
-        "vertex_mass": cs.mass, "total_mass": cs.mass * n,
-        "total_wall_s": sim_wall, "total_cpu_s": sim_cpu,
-        "seconds_per_frame_wall": sim_wall / n_sim, "seconds_per_frame_cpu": sim_cpu / n_sim,
-        "first_frame_wall_s": first_wall, "first_frame_cpu_s": first_cpu,
-        "metrics_wall_s_untimed": metrics_wall,
+        **grid_fields(cs, n, edges, quads, subdiv),
+        **timing,
         "final_structural_strain_max": final["structural_strain_max"],
         "final_structural_strain_mean": final["structural_strain_mean"],
         "final_structural_strain_min": final["structural_strain_min"],
@@ -304,19 +161,8 @@ def main():
         "final_mean_drop": drop, "final_min_z": final["min_z"],
         "final_min_height_above_floor": final["min_height_above_floor"],
         "min_height_above_floor_all_frames": min(p["min_height_above_floor"] for p in per_frame),
-        "final_self_intersecting_triangle_pairs": tri_pairs,
-        "final_self_intersecting_edge_triangle_pairs": edge_tri,
-        "self_intersection_check_wall_s": isect_wall,
-        "cloth_settings": {k: getattr(cs, k) for k in (
-            "quality", "mass", "air_damping", "tension_stiffness", "compression_stiffness",
-            "shear_stiffness", "bending_stiffness", "tension_damping", "compression_damping",
-            "shear_damping", "bending_damping", "bending_model", "time_scale", "use_internal_springs",
-            "use_pressure", "use_dynamic_mesh", "use_sewing_springs")},
-        "collision_settings": {k: getattr(cc, k) for k in (
-            "use_collision", "collision_quality", "distance_min", "impulse_clamp", "use_self_collision",
-            "self_distance_min", "self_friction", "self_impulse_clamp", "friction")},
-        "collider_settings": {k: getattr(sc, k) for k in (
-            "thickness_outer", "thickness_inner", "damping", "cloth_friction", "use_culling")},
+        **isect,
+        **settings_fields(mod, sphere),
         "sphere_mesh": {"segments": 64, "rings": 32, "vertices": len(sphere.data.vertices)},
         "gravity": list(scene.gravity),
         "per_frame": per_frame,
@@ -324,13 +170,7 @@ def main():
     with open(os.path.join(args.out, "blender_report.json"), "w") as f:
         json.dump(report, f, indent=1)
     if args.csv:
-        settings = "vertex mass %g kg" % cs.mass
-        if args.air_damping is not None:
-            settings += ", air damping %g" % cs.air_damping
-        if args.gravity is not None:
-            settings += ", gravity %g" % args.gravity
-        if cc.use_self_collision:
-            settings += ", self collision (distance %g)" % cc.self_distance_min
+        settings = settings_text(mod, air_damping=args.air_damping, gravity=args.gravity)
         new_file = not os.path.exists(args.csv)
         with open(args.csv, "a") as f:
             if new_file:
@@ -345,14 +185,13 @@ def main():
                 1e3 * report["final_closest_distance_to_sphere"], drop, edge_tri,
                 report["late_mean_structural_strain_max"], report["late_mean_shear_strain_max"],
                 report["late_worst_structural_strain_max"], report["late_worst_shear_strain_max"]))
-    print("RESULT %s: %.4f s/frame wall, %.4f s/frame cpu, final max strain %.4f (shear %.4f), "
-          "last 0.5 s mean of the per-frame max %.4f (shear %.4f), "
-          "closest to sphere %.5f m, inside %d, self-isect tri pairs %d, mean drop %.3f m" % (
-              args.out, report["seconds_per_frame_wall"], report["seconds_per_frame_cpu"],
-              report["final_structural_strain_max"], report["final_shear_strain_max"],
-              report["late_mean_structural_strain_max"], report["late_mean_shear_strain_max"],
-              report["final_closest_distance_to_sphere"], report["final_vertices_inside_sphere"],
-              tri_pairs, drop))
+    print_result(args.out, report, "final max strain %.4f (shear %.4f), "
+                 "last 0.5 s mean of the per-frame max %.4f (shear %.4f), "
+                 "closest to sphere %.5f m, inside %d, self-isect tri pairs %d, mean drop %.3f m", (
+                     report["final_structural_strain_max"], report["final_shear_strain_max"],
+                     report["late_mean_structural_strain_max"], report["late_mean_shear_strain_max"],
+                     report["final_closest_distance_to_sphere"], report["final_vertices_inside_sphere"],
+                     tri_pairs, drop))
 
 
 if __name__ == "__main__":

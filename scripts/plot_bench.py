@@ -21,6 +21,14 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
+def save(fig, out, title=None):
+    """Writes the figure to out (90 dpi) after laying it out, with title above its plots if given."""
+    if title:
+        fig.suptitle(title)
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+
+
 def stability(rows, out):
     integrators = sorted({r["integrator"] for r in rows})
     ks = sorted({float(r["k_per_mass"]) for r in rows})
@@ -42,8 +50,7 @@ def stability(rows, out):
                   "projective-tr_bdf2-aw": "projective, TR-BDF2, adaptive weights",
                   "projective-midpoint": "projective dynamics, implicit midpoint"}
         ax.set_title("%s: green = stable" % titles.get(name, name))
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out)
 
 
 def error(rows, out):
@@ -85,8 +92,7 @@ def error(rows, out):
     ax.set_title(title, fontsize=10)
     ax.set_xlim(1, 1000)
     ax.legend(fontsize=7, loc="center left", bbox_to_anchor=(1.01, 0.5))
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out)
 
 
 def heat(rows, out):
@@ -102,9 +108,7 @@ def heat(rows, out):
     for ax in axes:
         ax.set_xlabel("wall time per solve [ms], one core")
         ax.legend()
-    fig.suptitle("1D heat solver, gray-interlock 37 / -10 C, 3600 s: cells 25-800 x steps 10-3200")
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, "1D heat solver, gray-interlock 37 / -10 C, 3600 s: cells 25-800 x steps 10-3200")
 
 
 def surface(rows, out):
@@ -120,8 +124,7 @@ def surface(rows, out):
     ax.set_ylabel("time [s]")
     fig.colorbar(mesh, label="temperature [C]")
     ax.set_title("T(x, t) through the fabric")
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out)
 
 
 def segmentation(rows, out):
@@ -142,9 +145,7 @@ def segmentation(rows, out):
         ax.axvline(1000, color="grey", ls=":", lw=0.8)
         ax.set_xlabel("segment_mesh wall time [ms], one core")
         ax.legend(fontsize=7)
-    fig.suptitle("gc_mean_all (23 752 vertices, 6 parts): error against run time over tolerance and ncv")
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, "gc_mean_all (23 752 vertices, 6 parts): error against run time over tolerance and ncv")
 
 
 def alignment(rows, out):
@@ -165,10 +166,8 @@ def alignment(rows, out):
     for ax in axes:
         ax.set_xlabel("wall time per registration [ms], one core")
         ax.legend(fontsize=8)
-    fig.suptitle("ICP error against run time: MakeHuman body, 20 deg, 0.5% noise, 10% outliers "
-                 "(max iterations per stage 1-40)")
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, "ICP error against run time: MakeHuman body, 20 deg, 0.5% noise, 10% outliers "
+                   "(max iterations per stage 1-40)")
 
 
 def sphere(rows, out):
@@ -196,10 +195,8 @@ def sphere(rows, out):
         ax.set_xlabel("CPU seconds per 1/24 s frame, one core")
         ax.set_ylabel(title)
         ax.legend(fontsize=8)
-    fig.suptitle("Cloth onto a sphere (64x64, 0.3 kg, 2 s): run time against strain; "
-                 "dresskit settings (bench_cloth_sphere) and Blender 3.4.1's cloth")
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out, "Cloth onto a sphere (64x64, 0.3 kg, 2 s): run time against strain; "
+                   "dresskit settings (bench_cloth_sphere) and Blender 3.4.1's cloth")
 
 
 def drape(rows, out):
@@ -231,8 +228,7 @@ def drape(rows, out):
     ax.set_xticks(range(len(settings)), settings, rotation=60, ha="right", fontsize=8)
     ax.set_yticks(range(len(cases)), cases, fontsize=8)
     ax.set_title("Cloth dropped onto real bodies: held (green, CPU s) or not (red, why)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out)
 
 
 def dress(rows, out):
@@ -257,8 +253,7 @@ def dress(rows, out):
     ax.set_ylabel("mean distance to the reference [% of body height]")
     ax.set_title("dress: error against time per quality")
     ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(out, dpi=90)
+    save(fig, out)
 
 
 if __name__ == "__main__":

@@ -18,6 +18,11 @@ from mpl_toolkits.mplot3d.art3d import Poly3DCollection  # noqa: E402
 TYPES = {"double": "d", "float": "f", "uchar": "B", "int": "i", "uint": "I"}
 
 
+def fan(idx):
+    """A polygon's vertex indices as the triangles (idx[0], idx[k], idx[k + 1])."""
+    return [(idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1)]
+
+
 def read_ply(path):
     data = open(path, "rb").read()
     end = data.index(b"end_header\n") + len(b"end_header\n")
@@ -46,8 +51,7 @@ def read_ply(path):
         n = data[pos]
         idx = struct.unpack_from("<%di" % n, data, pos + 1)
         pos += 1 + 4 * n
-        for k in range(1, n - 1):
-            faces.append((idx[0], idx[k], idx[k + 1]))
+        faces += fan(idx)
     return verts, np.array(faces), colours
 
 
@@ -55,14 +59,10 @@ def read_obj(path):
     verts, faces = [], []
     for line in open(path):
         w = line.split()
-        if not w:
-            continue
-        if w[0] == "v":
+        if w[:1] == ["v"]:
             verts.append([float(x) for x in w[1:4]])
-        elif w[0] == "f":
-            idx = [int(x.split("/")[0]) - 1 for x in w[1:]]
-            for k in range(1, len(idx) - 1):
-                faces.append((idx[0], idx[k], idx[k + 1]))
+        elif w[:1] == ["f"]:
+            faces += fan([int(x.split("/")[0]) - 1 for x in w[1:]])
     return np.array(verts), np.array(faces), None
 
 
