@@ -9,6 +9,7 @@
 #include "dresskit/cloth/scene.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/mesh/errors.h"
+#include "dresskit/testing/errors.h"
 #include "dresskit/thickness/thickness.h"
 #include "test_data.h"
 
@@ -244,12 +245,7 @@ TEST(Layers, SceneBuildsDoubleAndStackedLayersWithThicknessFromHeat) {
 
   auto error_of = [&](const std::string& text) {
     std::ofstream(scene) << text;
-    try {
-      load_cloth_scene(scene);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return test::input_error_of([&] { load_cloth_scene(scene); });
   };
   EXPECT_NE(
       error_of(R"({"cloth": {"grid": {}, "thickness": {"mm": 5, "min_mm": 6}}})").find("min_mm"),

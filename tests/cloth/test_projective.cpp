@@ -103,12 +103,19 @@ double oscillator_error(TimeScheme scheme, double dt) {
 }
 }  // namespace
 
+// The factor of p.A in precision T, and its first solve of p.b.
+template <typename T>
+RowX3 factor_and_solve(const SolveProblem& p, detail::InterleavedCholesky<T>& factor) {
+  EXPECT_TRUE(factor.compute(p.A));
+  RowX3 x = p.b;
+  factor.solve_in_place(x.data());
+  return x;
+}
+
 TEST(InterleavedCholesky, DoublePrecisionAgreesWithEigensLdlt) {
   const SolveProblem p = solve_problem(3);
   detail::InterleavedCholesky<double> mine;
-  ASSERT_TRUE(mine.compute(p.A));
-  RowX3 x = p.b;
-  mine.solve_in_place(x.data());
+  const RowX3 x = factor_and_solve(p, mine);
   EXPECT_LT((Eigen::MatrixX3d(x) - p.expected).norm(), 1e-12 * p.expected.norm());
   EXPECT_LT((p.A * Eigen::MatrixX3d(x) - Eigen::MatrixX3d(p.b)).norm(), 1e-12 * p.b.norm());
 }
@@ -118,9 +125,7 @@ TEST(InterleavedCholesky, DoublePrecisionAgreesWithEigensLdlt) {
 TEST(InterleavedCholesky, SinglePrecisionCorrectionsRecoverDoubleAccuracy) {
   const SolveProblem p = solve_problem(5);
   detail::InterleavedCholesky<float> single;
-  ASSERT_TRUE(single.compute(p.A));
-  RowX3 x = p.b;
-  single.solve_in_place(x.data());
+  RowX3 x = factor_and_solve(p, single);
   const double first = (Eigen::MatrixX3d(x) - p.expected).norm() / p.expected.norm();
   EXPECT_LT(first, 1e-4);
   EXPECT_GT(first, 1e-12);  // it is single precision
@@ -218,25 +223,34 @@ TEST(ProjectiveDynamics, TrBdf2AndMidpointAreSecondOrderOnAnOscillator) {
   }
 }
 
+// 48 steps of 1/24 s of a 12 × 12 grid with springs 10⁴ times a fabric's, hanging from two corners;
+// its state set from outside (which restarts BDF2) after step `reset` (-1: never).
+ClothSimulator hang_very_stiff_cloth(TimeScheme scheme, bool adaptive_weights, int reset) {
+  ClothModel model = build_cloth(make_grid({0.5, 0.5}, {12, 12}, {0, 0, 0}, {0, 0, 1}),
+                                 fabric_by_name("white-dots-on-blk"));
+  for (double& k : model.springs.k_rest) k *= 1e4;
+  model.springs.k_knee = model.springs.k_rest;
+  SimulationOptions o = test::bare_options(Integrator::projective);
+  o.projective.time_scheme = scheme;
+  o.projective.adaptive_weights = adaptive_weights;
+  o.dt = 1.0 / 24.0;
+  o.air_damping = 0.1;
+  ClothSimulator sim(model, o);
+  sim.set_pinned({132, 143});
+  for (int step = 0; step < 48; ++step) {
+    const StepResult r = sim.step();
+    EXPECT_TRUE(r.ok) << r.failure << " adaptive weights " << adaptive_weights;
+    if (!r.ok) break;
+    if (step == reset) sim.set_state(sim.positions(), sim.velocities());
+  }
+  return sim;
+}
+
 // TR-BDF2 is L-stable (its BDF2 stage damps what the midpoint stage leaves): very stiff springs at
 // 1/24 s settle; the implicit midpoint rule alone keeps their energy (no numerical damping).
 TEST(ProjectiveDynamics, TrBdf2IsStableAndDissipativeOnVeryStiffSpringsAtLargeSteps) {
-  const TriangleMesh grid = make_grid({0.5, 0.5}, {12, 12}, {0, 0, 0}, {0, 0, 1});
-  ClothModel model = build_cloth(grid, fabric_by_name("white-dots-on-blk"));
-  for (double& k : model.springs.k_rest) k *= 1e4;
-  model.springs.k_knee = model.springs.k_rest;
   for (bool adaptive : {false, true}) {
-    SimulationOptions o = test::bare_options(Integrator::projective);
-    o.projective.time_scheme = TimeScheme::tr_bdf2;
-    o.projective.adaptive_weights = adaptive;
-    o.dt = 1.0 / 24.0;
-    o.air_damping = 0.1;
-    ClothSimulator sim(model, o);
-    sim.set_pinned({132, 143});
-    for (int step = 0; step < 48; ++step) {
-      const StepResult r = sim.step();
-      ASSERT_TRUE(r.ok) << r.failure << " adaptive " << adaptive;
-    }
+    const ClothSimulator sim = hang_very_stiff_cloth(TimeScheme::tr_bdf2, adaptive, -1);
     EXPECT_LT(sim.max_strain(), 0.01) << "adaptive " << adaptive;
     EXPECT_LT(sim.kinetic_energy(), 1e-2) << "adaptive " << adaptive;
   }
@@ -280,21 +294,7 @@ TEST(ProjectiveDynamics, AdaptiveWeightsFollowTheStrainAndConvergeFaster) {
 // A step size change, or a state set from outside, restarts BDF2 from the current state: the run
 // stays stable and dissipative with adaptive stepping on stiff springs at a large step.
 TEST(ProjectiveDynamics, Bdf2IsStableOnVeryStiffSpringsAtLargeSteps) {
-  const TriangleMesh grid = make_grid({0.5, 0.5}, {12, 12}, {0, 0, 0}, {0, 0, 1});
-  ClothModel model = build_cloth(grid, fabric_by_name("white-dots-on-blk"));
-  for (double& k : model.springs.k_rest) k *= 1e4;
-  model.springs.k_knee = model.springs.k_rest;
-  SimulationOptions o = test::bare_options(Integrator::projective);
-  o.projective.time_scheme = TimeScheme::bdf2;
-  o.dt = 1.0 / 24.0;
-  o.air_damping = 0.1;
-  ClothSimulator sim(model, o);
-  sim.set_pinned({132, 143});
-  for (int step = 0; step < 48; ++step) {
-    const StepResult r = sim.step();
-    ASSERT_TRUE(r.ok) << r.failure;
-    if (step == 20) sim.set_state(sim.positions(), sim.velocities());
-  }
+  const ClothSimulator sim = hang_very_stiff_cloth(TimeScheme::bdf2, false, 20);
   EXPECT_LT(sim.max_strain(), 0.01);
   EXPECT_LT(sim.kinetic_energy(), 1e-2);  // settled: a ringing (undamped) scheme would not be
 }

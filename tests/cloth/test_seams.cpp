@@ -8,6 +8,7 @@
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/mesh/errors.h"
+#include "dresskit/testing/errors.h"
 
 namespace dresskit {
 namespace {
@@ -93,14 +94,7 @@ TEST(Seams, ChainsOfDifferentResolutionsAreResampledToMatch) {
 TEST(Seams, BadStitchesAreRefusedWithAClearMessage) {
   const Eigen::MatrixX3d x = loose_particles(4, 1).rest_positions;
   SeamSet s;
-  auto message = [](auto&& call) {
-    try {
-      call();
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  const auto& message = test::input_error_of;
   EXPECT_NE(message([&] {
               add_seam_pairs(s, {{0, 9}}, 4, {1.0, 1.0});
             }).find("out of range"),

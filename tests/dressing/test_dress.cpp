@@ -10,12 +10,13 @@
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/dressing/dress.h"
+#include "dresskit/mannequin/garments.h"
+#include "dresskit/mannequin/mannequin.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/inside.h"
 #include "dresskit/mesh/io.h"
-#include "dresskit/mannequin/garments.h"
-#include "dresskit/mannequin/mannequin.h"
 #include "dresskit/mesh/topology.h"
+#include "dresskit/testing/errors.h"
 #include "test_data.h"
 
 using namespace dresskit;
@@ -283,12 +284,7 @@ TEST(Dress, BadInputNamesTheFileAndWhatIsWrong) {
   DressOptions o;
   o.settle = false;
   auto message = [&](const MeshFile& body, const GarmentFile& g) {
-    try {
-      dress(body, {g}, o);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return test::input_error_of([&] { dress(body, {g}, o); });
   };
   // A forgotten --units dm: a 17 m person.
   const std::string tall = message(in_units(body_path("mh_woman_young_average"), "m"), garment);
@@ -315,12 +311,7 @@ TEST(Dress, MeshesGivenInMemoryAreCheckedAndNamedAsGiven) {
   go.edge_length = mo.edge_length;
   const TriangleMesh body = make_mannequin(shape), shirt = make_garment(shape, GarmentKind::tshirt, go);
   auto message = [&](const MeshFile& b, const std::vector<GarmentFile>& g) {
-    try {
-      dress(b, g);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return test::input_error_of([&] { dress(b, g); });
   };
   TriangleMesh bad_labels = shirt;
   bad_labels.labels(0) = static_cast<int>(bad_labels.label_names.size());

@@ -2,6 +2,7 @@
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
+#include "dresskit/testing/expect.h"
 #include "mannequin_fixture.h"
 
 using namespace dresskit;
@@ -9,17 +10,12 @@ using namespace dresskit;
 TEST(Mannequin, ClosedManifoldOutwardOneComponent) {
   const TriangleMesh& m = test::DefaultScene::get().mannequin;
   const TopologyReport t = analyse_topology(m);
-  EXPECT_TRUE(t.manifold);
-  EXPECT_TRUE(t.closed);
-  EXPECT_TRUE(t.outward);
-  EXPECT_EQ(t.num_components, 1);
+  test::expect_closed_outward(t);
   EXPECT_EQ(t.euler_characteristic, 2);  // a sphere's topology: no handles
   EXPECT_EQ(t.num_degenerate_faces, 0);
   // An adult's volume is about 0.06–0.08 m³ and skin area about 1.6–2.0 m².
-  EXPECT_GT(t.signed_volume, 0.045);
-  EXPECT_LT(t.signed_volume, 0.09);
-  EXPECT_GT(t.area, 1.4);
-  EXPECT_LT(t.area, 2.2);
+  test::expect_between(t.signed_volume, 0.045, 0.09, "volume [m³]");
+  test::expect_between(t.area, 1.4, 2.2, "area [m²]");
 }
 
 TEST(Mannequin, SizeFollowsTheOptions) {

@@ -7,6 +7,7 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/isosurface.h"
 #include "dresskit/mesh/topology.h"
+#include "dresskit/testing/expect.h"
 #include "mesh_fixtures.h"
 
 using namespace dresskit;
@@ -111,10 +112,7 @@ TEST(Cleanup, SplitsANonManifoldVertex) {
   const CleanupResult r = cleanup_mesh(fixtures::bowtie_tetrahedra());
   EXPECT_EQ(r.non_manifold_vertices_split, 1);
   const TopologyReport t = analyse_topology(r.mesh);
-  EXPECT_TRUE(t.manifold);
-  EXPECT_TRUE(t.closed);
-  EXPECT_TRUE(t.outward);
-  EXPECT_EQ(t.num_components, 2);
+  test::expect_closed_outward(t, 2);
   EXPECT_EQ(t.num_vertices, 8);
   // Both copies of the split vertex come from input vertex 0.
   EXPECT_EQ((r.mesh.source_vertex.array() == 0).count(), 2);

@@ -8,6 +8,7 @@
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/mesh/topology.h"
+#include "dresskit/testing/expect.h"
 #include "test_data.h"
 
 using namespace dresskit;
@@ -100,16 +101,10 @@ TEST_P(Body, CleanupGivesAClosedManifoldOutwardBody) {
   const TriangleMesh m = load(GetParam());
   const CleanupResult r = cleanup_mesh(m);
   const TopologyReport t = analyse_topology(r.mesh);
-  EXPECT_TRUE(t.manifold);
-  EXPECT_TRUE(t.closed);
-  EXPECT_TRUE(t.outward);
-  EXPECT_EQ(t.num_components, 1);
+  test::expect_closed_outward(t);
   // A human body of 1.1–2 m height and a plausible volume (0.02–0.15 m³).
-  const Eigen::AlignedBox3d box = bounding_box(r.mesh);
-  EXPECT_GT(box.sizes().y(), 1.1);
-  EXPECT_LT(box.sizes().y(), 2.0);
-  EXPECT_GT(t.signed_volume, 0.02);
-  EXPECT_LT(t.signed_volume, 0.15);
+  test::expect_between(bounding_box(r.mesh).sizes().y(), 1.1, 2.0, "height [m]");
+  test::expect_between(t.signed_volume, 0.02, 0.15, "volume [m³]");
   // Quads of MakeHuman bodies survive cleanup, and every vertex keeps its file index.
   if (m.quads.rows() > 0) {
     EXPECT_GT(r.mesh.quads.rows(), m.quads.rows() * 99 / 100);

@@ -1,6 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "dresskit/mesh/topology.h"
+#include "dresskit/testing/expect.h"
 #include "mesh_fixtures.h"
 
 using namespace dresskit;
@@ -8,14 +11,10 @@ using namespace dresskit;
 TEST(Topology, TetrahedronIsClosedOutwardWithKnownVolume) {
   const TriangleMesh m = fixtures::tetrahedron();
   const TopologyReport t = analyse_topology(m);
-  EXPECT_EQ(t.num_vertices, 4);
-  EXPECT_EQ(t.num_edges, 6);
-  EXPECT_EQ(t.num_components, 1);
-  EXPECT_EQ(t.num_boundary_loops, 0);
-  EXPECT_TRUE(t.manifold);
-  EXPECT_TRUE(t.closed);
-  EXPECT_TRUE(t.outward);
-  EXPECT_EQ(t.euler_characteristic, 2);
+  // Vertices, edges, borders and the Euler characteristic of a sphere.
+  EXPECT_EQ(std::make_tuple(t.num_vertices, t.num_edges, t.num_boundary_loops, t.euler_characteristic),
+            std::make_tuple(4, 6, 0, 2));
+  test::expect_closed_outward(t);
   EXPECT_NEAR(t.signed_volume, 1.0 / 6.0, 1e-15);  // unit right tetrahedron
   EXPECT_NEAR(t.area, 1.5 + std::sqrt(3.0) / 2.0, 1e-12);
 }
@@ -46,9 +45,9 @@ TEST(Topology, OpenGridHasOneBoundaryLoop) {
 TEST(Topology, TwoTetrahedraSharingAVertexIsNonManifold) {
   const TriangleMesh m = fixtures::bowtie_tetrahedra();
   const TopologyReport t = analyse_topology(m);
-  EXPECT_EQ(t.num_components, 1);
-  EXPECT_EQ(t.num_non_manifold_vertices, 1);
-  EXPECT_EQ(t.num_non_manifold_edges, 0);
+  // One piece, one non-manifold vertex, every edge manifold.
+  EXPECT_EQ(std::make_tuple(t.num_components, t.num_non_manifold_vertices, t.num_non_manifold_edges),
+            std::make_tuple(1, 1, 0));
   EXPECT_FALSE(t.manifold);
   EXPECT_FALSE(t.closed);
 }

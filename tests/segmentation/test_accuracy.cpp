@@ -9,8 +9,8 @@
 #include <map>
 
 #include "dresskit/mesh/io.h"
-#include "dresskit/segmentation/label_cleanup.h"
 #include "dresskit/segmentation/graph.h"
+#include "dresskit/segmentation/label_cleanup.h"
 #include "dresskit/segmentation/metrics.h"
 #include "dresskit/segmentation/segment.h"
 #include "ground_truth.h"
@@ -43,6 +43,21 @@ std::string majority_name(const SegmentationResult& r, const Eigen::VectorXi& pr
   const auto best = std::max_element(
       votes.begin(), votes.end(), [](const auto& a, const auto& b) { return a.second < b.second; });
   return r.parts[best->first].name;
+}
+
+// Mean IoU ≥ 0.85 and Rand error ≤ 0.10 (c), every truth part carrying the name of its truth label
+// (predicted: r's labels, perhaps with parts merged), and, where the axes were not given, +Y up and
+// +Z forward found (the data's README).
+void expect_parts_named_as_truth(const SegmentationResult& r, const Eigen::VectorXi& predicted,
+                                 const test::GroundTruth& truth, const LabelComparison& c, bool given) {
+  EXPECT_GE(c.mean_iou, 0.85);
+  EXPECT_LE(1.0 - c.rand_index, 0.10);
+  for (size_t t = 0; t < truth.names.size(); ++t)
+    EXPECT_EQ(majority_name(r, predicted, truth, static_cast<int>(t)), truth.names[t]) << given;
+  if (!given) {
+    EXPECT_GT(r.axes.up.dot(Eigen::Vector3d::UnitY()), 0.95);
+    EXPECT_GT(r.axes.forward.dot(Eigen::Vector3d::UnitZ()), 0.95) << r.axes.forward_source;
+  }
 }
 
 LabelComparison report(const std::string& what, const Eigen::VectorXi& predicted,
@@ -96,15 +111,7 @@ TEST_P(MakeHumanBody, MeanIouAndNames) {
     const SegmentationResult r = segment_mesh(mesh, body_options(given));
     const LabelComparison c =
         report(GetParam() + (given ? "" : " (axes estimated)"), r.vertex_labels, truth, r);
-    EXPECT_GE(c.mean_iou, 0.85);
-    EXPECT_LE(1.0 - c.rand_index, 0.10);
-    for (size_t t = 0; t < truth.names.size(); ++t)
-      EXPECT_EQ(majority_name(r, r.vertex_labels, truth, static_cast<int>(t)), truth.names[t])
-          << given;
-    if (!given) {
-      EXPECT_GT(r.axes.up.dot(Eigen::Vector3d::UnitY()), 0.95);
-      EXPECT_GT(r.axes.forward.dot(Eigen::Vector3d::UnitZ()), 0.95) << r.axes.forward_source;
-    }
+    expect_parts_named_as_truth(r, r.vertex_labels, truth, c, given);
   }
   // The number of parts chosen automatically: the eigengap's 5, then the head as a sixth limb.
   SegmentationOptions automatic = body_options(true);
@@ -128,15 +135,9 @@ TEST_P(GarmentCodeBody, MeanIouAndNames) {
     const Eigen::VectorXi merged = merge_named(r, "head", "torso");
     const LabelComparison c =
         report(GetParam() + (given ? "" : " (axes estimated)"), merged, truth, r);
-    EXPECT_GE(c.mean_iou, 0.85);
-    EXPECT_LE(1.0 - c.rand_index, 0.10);
     expect_one_patch_per_part(mesh, r);
-    for (size_t t = 0; t < truth.names.size(); ++t)
-      EXPECT_EQ(majority_name(r, merged, truth, static_cast<int>(t)), truth.names[t]) << given;
-    if (!given) {  // the T-pose's arm span is close to its height: PCA must still find up
-      EXPECT_GT(r.axes.up.dot(Eigen::Vector3d::UnitY()), 0.95);
-      EXPECT_GT(r.axes.forward.dot(Eigen::Vector3d::UnitZ()), 0.95) << r.axes.forward_source;
-    }
+    // Axes estimated on the T-pose: its arm span is close to its height, PCA must still find up.
+    expect_parts_named_as_truth(r, merged, truth, c, given);
   }
   SegmentationOptions automatic = body_options(true);
   automatic.parts = 0;

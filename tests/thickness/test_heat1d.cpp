@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "dresskit/mesh/errors.h"
+#include "dresskit/testing/errors.h"
 #include "dresskit/thickness/heat1d.h"
 
 namespace dresskit {
@@ -27,6 +28,28 @@ double max_error_vs_series(const HeatProblem& p, const HeatResult& r) {
   for (Eigen::Index i = 0; i < r.x.size(); ++i)
     e = std::max(e, std::abs(r.temperature[i] - heat_finite_slab(p, r.x[i], p.duration)));
   return e;
+}
+
+// The largest error against the series of `scheme` on each (cells, steps) grid.
+std::vector<double> errors_of(const HeatProblem& p, HeatScheme scheme,
+                              const std::vector<std::pair<int, int>>& grids) {
+  std::vector<double> errors;
+  for (const auto& [cells, steps] : grids) {
+    HeatOptions o;
+    o.scheme = scheme;
+    o.cells = cells;
+    o.steps = steps;
+    errors.push_back(max_error_vs_series(p, solve_heat(p, o)));
+  }
+  return errors;
+}
+
+// The observed order of convergence between consecutive grids, each half the size of the one
+// before: log2 of the ratio of their errors.
+std::vector<double> orders(const std::vector<double>& errors) {
+  std::vector<double> out;
+  for (std::size_t k = 1; k < errors.size(); ++k) out.push_back(std::log2(errors[k - 1] / errors[k]));
+  return out;
 }
 
 TEST(Heat1d, TridiagonalSolveMatchesDenseSolve) {
@@ -57,33 +80,19 @@ TEST(Heat1d, SeriesSolutionMeetsItsBoundaryAndInitialConditions) {
 
 TEST(Heat1d, CrankNicolsonIsSecondOrderAgainstTheSeries) {
   const HeatProblem p = slab();
-  std::vector<double> errors;
-  for (int n : {20, 40, 80, 160}) {
-    HeatOptions o;
-    o.scheme = HeatScheme::crank_nicolson;
-    o.cells = n;
-    o.steps = n;  // Δt ∝ Δx: both error terms shrink by 4 per halving
-    errors.push_back(max_error_vs_series(p, solve_heat(p, o)));
-  }
-  for (std::size_t k = 1; k < errors.size(); ++k) {
-    const double order = std::log2(errors[k - 1] / errors[k]);
-    EXPECT_GE(order, 1.8) << "between refinements " << k - 1 << " and " << k;
-  }
+  // Δt ∝ Δx: both error terms shrink by 4 per halving.
+  const std::vector<double> errors =
+      errors_of(p, HeatScheme::crank_nicolson, {{20, 20}, {40, 40}, {80, 80}, {160, 160}});
+  const std::vector<double> order = orders(errors);
+  for (std::size_t k = 0; k < order.size(); ++k) EXPECT_GE(order[k], 1.8) << "refinement " << k + 1;
   EXPECT_LT(errors.back(), 2e-3);  // [K] out of a 47 K range
 }
 
 TEST(Heat1d, ImplicitEulerIsFirstOrderInTime) {
-  const HeatProblem p = slab();
-  std::vector<double> errors;
-  for (int steps : {25, 50, 100, 200}) {
-    HeatOptions o;
-    o.scheme = HeatScheme::implicit_euler;
-    o.cells = 800;  // fine enough that the time error dominates
-    o.steps = steps;
-    errors.push_back(max_error_vs_series(p, solve_heat(p, o)));
-  }
-  for (std::size_t k = 1; k < errors.size(); ++k)
-    EXPECT_NEAR(std::log2(errors[k - 1] / errors[k]), 1.0, 0.2);
+  // 800 cells: fine enough that the time error dominates.
+  const std::vector<double> errors =
+      errors_of(slab(), HeatScheme::implicit_euler, {{800, 25}, {800, 50}, {800, 100}, {800, 200}});
+  for (double order : orders(errors)) EXPECT_NEAR(order, 1.0, 0.2);
 }
 
 TEST(Heat1d, ExplicitIsSecondOrderInSpaceWithinItsLimitAndSubStepsBeyondIt) {
@@ -99,7 +108,7 @@ TEST(Heat1d, ExplicitIsSecondOrderInSpaceWithinItsLimitAndSubStepsBeyondIt) {
     EXPECT_EQ(r.steps_taken, o.steps);  // no sub-steps needed
     errors.push_back(max_error_vs_series(p, r));
   }
-  for (std::size_t k = 1; k < errors.size(); ++k) EXPECT_GE(std::log2(errors[k - 1] / errors[k]), 1.8);
+  for (double order : orders(errors)) EXPECT_GE(order, 1.8);
 
   HeatOptions beyond;
   beyond.scheme = HeatScheme::explicit_euler;
@@ -150,12 +159,7 @@ TEST(Heat1d, RecordsTheSurfaceAndFindsCrossings) {
 TEST(Heat1d, RejectsBadProblemsByName) {
   const HeatProblem good = slab();
   auto message = [](const HeatProblem& p, const HeatOptions& o) {
-    try {
-      solve_heat(p, o);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
+    return test::input_error_of([&] { solve_heat(p, o); });
   };
   HeatProblem p = good;
   p.diffusivity = 0.0;

@@ -6,20 +6,14 @@
 #include <random>
 
 #include "dresskit/mesh/errors.h"
+#include "dresskit/testing/errors.h"
 #include "dresskit/thickness/thickness.h"
 #include "test_data.h"
 
 namespace dresskit {
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "no error";
-}
+using test::input_error_of;
 
 TEST(Fibres, TableHasTheIssuesFibresWithPositiveFigures) {
   for (const char* name : {"cotton", "polyester", "spandex", "nylon", "rayon", "wool", "down", "air"}) {
@@ -31,7 +25,7 @@ TEST(Fibres, TableHasTheIssuesFibresWithPositiveFigures) {
   }
   EXPECT_EQ(fibre_by_name("elastane").name, "spandex");
   EXPECT_EQ(fibre_by_name("viscose").name, "rayon");
-  EXPECT_NE(error_of([] { fibre_by_name("kevlar"); }).find("cotton"), std::string::npos);
+  EXPECT_NE(input_error_of([] { fibre_by_name("kevlar"); }).find("cotton"), std::string::npos);
 }
 
 TEST(Fibres, CompositionParsingAndChecks) {
@@ -40,17 +34,17 @@ TEST(Fibres, CompositionParsingAndChecks) {
   EXPECT_EQ(c[1].first, "polyester");
   EXPECT_DOUBLE_EQ(c[1].second, 0.4);
   EXPECT_NO_THROW(check_composition(c));
-  EXPECT_NE(error_of([] { parse_composition("cotton0.6"); }).find("cotton0.6"), std::string::npos);
-  EXPECT_NE(error_of([] { parse_composition("cotton=abc"); }).find("abc"), std::string::npos);
-  EXPECT_NE(error_of([] { check_composition(parse_composition("cotton=0.6,polyester=0.3")); }).find("sum"),
+  EXPECT_NE(input_error_of([] { parse_composition("cotton0.6"); }).find("cotton0.6"), std::string::npos);
+  EXPECT_NE(input_error_of([] { parse_composition("cotton=abc"); }).find("abc"), std::string::npos);
+  EXPECT_NE(input_error_of([] { check_composition(parse_composition("cotton=0.6,polyester=0.3")); }).find("sum"),
             std::string::npos);
-  EXPECT_NE(error_of([] { check_composition(parse_composition("cotton=1.2,polyester=-0.2")); }).find("-0.2"),
+  EXPECT_NE(input_error_of([] { check_composition(parse_composition("cotton=1.2,polyester=-0.2")); }).find("-0.2"),
             std::string::npos);
-  EXPECT_NE(error_of([] { check_composition(parse_composition("cotton=0.5,silk=0.5")); }).find("silk"),
+  EXPECT_NE(input_error_of([] { check_composition(parse_composition("cotton=0.5,silk=0.5")); }).find("silk"),
             std::string::npos);
-  EXPECT_NE(error_of([] { check_composition(parse_composition("cotton=0.5,cotton=0.5")); }).find("twice"),
+  EXPECT_NE(input_error_of([] { check_composition(parse_composition("cotton=0.5,cotton=0.5")); }).find("twice"),
             std::string::npos);
-  EXPECT_NE(error_of([] { check_composition(parse_composition("cotton=0.5,air=0.5")); }).find("solidity"),
+  EXPECT_NE(input_error_of([] { check_composition(parse_composition("cotton=0.5,air=0.5")); }).find("solidity"),
             std::string::npos);
   // Within 1e-6 of 1 is accepted.
   EXPECT_NO_THROW(check_composition(parse_composition("cotton=0.6000005,polyester=0.4")));
@@ -89,8 +83,8 @@ TEST(Fibres, NominalConductivityLiesBetweenTheBoundsForAnyBlend) {
     EXPECT_LE(t.conductivity_nominal, t.conductivity_parallel + 1e-15);
     EXPECT_GT(t.conductivity_series, fibre_by_name("air").conductivity);
   }
-  EXPECT_NE(error_of([] { fabric_thermal({{"cotton", 1.0}}, 0.0); }).find("solidity"), std::string::npos);
-  EXPECT_NE(error_of([] { fabric_thermal({{"cotton", 1.0}}, 1.5); }).find("solidity"), std::string::npos);
+  EXPECT_NE(input_error_of([] { fabric_thermal({{"cotton", 1.0}}, 0.0); }).find("solidity"), std::string::npos);
+  EXPECT_NE(input_error_of([] { fabric_thermal({{"cotton", 1.0}}, 1.5); }).find("solidity"), std::string::npos);
 }
 
 TEST(Thickness, OrderedLimitsAndAgreementWithTheClosedForm) {
@@ -139,16 +133,16 @@ TEST(Thickness, RejectsBadConditionsByValue) {
   const Composition c = {{"cotton", 1.0}};
   ThicknessOptions o;
   o.t_env = 37.0;
-  EXPECT_NE(error_of([&] { compute_thickness(c, o); }).find("T_skin"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { compute_thickness(c, o); }).find("T_skin"), std::string::npos);
   o = {};
   o.threshold = 40.0;
-  EXPECT_NE(error_of([&] { compute_thickness(c, o); }).find("threshold 40"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { compute_thickness(c, o); }).find("threshold 40"), std::string::npos);
   o = {};
   o.exposure = 0.0;
-  EXPECT_NE(error_of([&] { compute_thickness(c, o); }).find("exposure"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { compute_thickness(c, o); }).find("exposure"), std::string::npos);
   o = {};
   o.heat.cells = 0;
-  EXPECT_NE(error_of([&] { compute_thickness(c, o); }).find("cells"), std::string::npos);
+  EXPECT_NE(input_error_of([&] { compute_thickness(c, o); }).find("cells"), std::string::npos);
   // A warmer environment than the skin is fine: heat flows the other way.
   o = {};
   o.t_skin = 20.0;
