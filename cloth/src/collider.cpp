@@ -8,15 +8,22 @@
 
 namespace dresskit {
 
+namespace {
+Collider collider_of(Collider::Kind kind, const Eigen::Vector3d& point, double friction) {
+  Collider c;
+  c.kind = kind;
+  c.point = point;
+  c.friction = friction;
+  return c;
+}
+}  // namespace
+
 Collider Collider::plane(const Eigen::Vector3d& point, const Eigen::Vector3d& normal, double friction) {
   if (!point.allFinite() || !normal.allFinite() || normal.norm() < 1e-12) {
     throw InputError("plane collider: point and normal must be finite, the normal non-zero");
   }
-  Collider c;
-  c.kind = Kind::plane;
-  c.point = point;
+  Collider c = collider_of(Kind::plane, point, friction);
   c.normal = normal.normalized();
-  c.friction = friction;
   return c;
 }
 
@@ -24,11 +31,8 @@ Collider Collider::sphere(const Eigen::Vector3d& centre, double radius, double f
   if (!centre.allFinite() || !(radius > 0.0) || !std::isfinite(radius)) {
     throw InputError("sphere collider: centre must be finite and radius positive");
   }
-  Collider c;
-  c.kind = Kind::sphere;
-  c.point = centre;
+  Collider c = collider_of(Kind::sphere, centre, friction);
   c.radius = radius;
-  c.friction = friction;
   return c;
 }
 
@@ -36,11 +40,8 @@ Collider Collider::box(const Eigen::Vector3d& centre, const Eigen::Vector3d& hal
   if (!centre.allFinite() || !half_size.allFinite() || half_size.minCoeff() <= 0.0) {
     throw InputError("box collider: centre must be finite and every half size positive");
   }
-  Collider c;
-  c.kind = Kind::box;
-  c.point = centre;
+  Collider c = collider_of(Kind::box, centre, friction);
   c.half_size = half_size;
-  c.friction = friction;
   return c;
 }
 
@@ -50,22 +51,17 @@ Collider Collider::cylinder(const Eigen::Vector3d& centre, const Eigen::Vector3d
       !(half_length > 0.0) || !std::isfinite(half_length)) {
     throw InputError("cylinder collider: centre finite, axis non-zero, radius and half_length positive");
   }
-  Collider c;
-  c.kind = Kind::cylinder;
-  c.point = centre;
+  Collider c = collider_of(Kind::cylinder, centre, friction);
   c.normal = axis.normalized();
   c.radius = radius;
   c.half_length = half_length;
-  c.friction = friction;
   return c;
 }
 
 Collider Collider::mesh(std::shared_ptr<const MeshDistance> body, double friction) {
   if (!body) throw InputError("mesh collider: no body");
-  Collider c;
-  c.kind = Kind::mesh;
+  Collider c = collider_of(Kind::mesh, Eigen::Vector3d::Zero(), friction);
   c.body = std::move(body);
-  c.friction = friction;
   c.penalty = 20.0;
   return c;
 }

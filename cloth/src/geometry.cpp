@@ -162,17 +162,28 @@ int cubic_candidates(const double c[4], double out[5]) {
   return n;
 }
 
-Contact vertex_triangle_ccd(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& a0,
-                            const Eigen::Vector3d& a1, const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
-                            const Eigen::Vector3d& c0, const Eigen::Vector3d& c1, double eta) {
-  double c[4], times[7];
-  triple_product_cubic(b0 - a0, (b1 - a1) - (b0 - a0), c0 - a0, (c1 - a1) - (c0 - a0), p0 - a0,
-                       (p1 - a1) - (p0 - a0), c);
+namespace {
+/// The times to test along a step for a contact of two primitives whose relative vectors are
+/// u0 + t du, w0 + t dw, r0 + t dr: the step's ends and where the three become coplanar, in order.
+int contact_times(const Eigen::Vector3d& u0, const Eigen::Vector3d& du, const Eigen::Vector3d& w0,
+                  const Eigen::Vector3d& dw, const Eigen::Vector3d& r0, const Eigen::Vector3d& dr, double times[7]) {
+  double c[4];
+  triple_product_cubic(u0, du, w0, dw, r0, dr, c);
   int n = 0;
   times[n++] = 0.0;
   n += cubic_candidates(c, times + n);
   times[n++] = 1.0;
   sort_few(times, n);
+  return n;
+}
+}  // namespace
+
+Contact vertex_triangle_ccd(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& a0,
+                            const Eigen::Vector3d& a1, const Eigen::Vector3d& b0, const Eigen::Vector3d& b1,
+                            const Eigen::Vector3d& c0, const Eigen::Vector3d& c1, double eta) {
+  double times[7];
+  const int n = contact_times(b0 - a0, (b1 - a1) - (b0 - a0), c0 - a0, (c1 - a1) - (c0 - a0), p0 - a0,
+                              (p1 - a1) - (p0 - a0), times);
   Contact hit;
   for (int k = 0; k < n; ++k) {
     const double t = times[k];
@@ -199,14 +210,9 @@ Contact vertex_triangle_ccd(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1
 Contact edge_edge_ccd(const Eigen::Vector3d& p0, const Eigen::Vector3d& p1, const Eigen::Vector3d& q0,
                       const Eigen::Vector3d& q1, const Eigen::Vector3d& r0, const Eigen::Vector3d& r1,
                       const Eigen::Vector3d& s0, const Eigen::Vector3d& s1, double eta) {
-  double c[4], times[7];
-  triple_product_cubic(q0 - p0, (q1 - p1) - (q0 - p0), s0 - r0, (s1 - r1) - (s0 - r0), r0 - p0,
-                       (r1 - p1) - (r0 - p0), c);
-  int n = 0;
-  times[n++] = 0.0;
-  n += cubic_candidates(c, times + n);
-  times[n++] = 1.0;
-  sort_few(times, n);
+  double times[7];
+  const int n = contact_times(q0 - p0, (q1 - p1) - (q0 - p0), s0 - r0, (s1 - r1) - (s0 - r0), r0 - p0,
+                              (r1 - p1) - (r0 - p0), times);
   Contact hit;
   for (int k = 0; k < n; ++k) {
     const double t = times[k];

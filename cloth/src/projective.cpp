@@ -46,15 +46,9 @@
 namespace dresskit {
 using namespace pd;
 
-namespace {
-const NameTable<TimeScheme> kTimeSchemes = {{"backward_euler", TimeScheme::backward_euler},
-                                            {"bdf2", TimeScheme::bdf2},
-                                            {"midpoint", TimeScheme::midpoint},
-                                            {"tr_bdf2", TimeScheme::tr_bdf2}};
-}  // namespace
-
+const NameTable<TimeScheme> kTimeSchemes = {{"backward_euler", TimeScheme::backward_euler}, {"bdf2", TimeScheme::bdf2},
+    {"midpoint", TimeScheme::midpoint}, {"tr_bdf2", TimeScheme::tr_bdf2}};
 TimeScheme parse_time_scheme(const std::string& text) { return parse_name(text, kTimeSchemes, "time_scheme"); }
-
 std::string to_string(TimeScheme scheme) { return name_of(scheme, kTimeSchemes); }
 
 // The factorisation for the step h in the matrix: the current one, one kept from a recent step

@@ -9,17 +9,11 @@
 
 namespace dresskit {
 
-namespace {
 const NameTable<Integrator> kIntegrators = {{"symplectic", Integrator::symplectic_euler},
-                                            {"symplectic_euler", Integrator::symplectic_euler},
-                                            {"implicit", Integrator::implicit_euler},
-                                            {"implicit_euler", Integrator::implicit_euler},
-                                            {"newton", Integrator::newton},
-                                            {"projective", Integrator::projective}};
-}  // namespace
-
+    {"symplectic_euler", Integrator::symplectic_euler}, {"implicit", Integrator::implicit_euler},
+    {"implicit_euler", Integrator::implicit_euler}, {"newton", Integrator::newton},
+    {"projective", Integrator::projective}};
 Integrator parse_integrator(const std::string& text) { return parse_name(text, kIntegrators, "integrator"); }
-
 std::string to_string(Integrator integrator) { return name_of(integrator, kIntegrators); }
 
 void check_options(const SimulationOptions& o) {

@@ -16,13 +16,8 @@ const std::vector<GarmentKind>& all_garment_kinds() {
   return kinds;
 }
 
-namespace {
-const NameTable<GarmentKind> kGarmentKinds = {{"tshirt", GarmentKind::tshirt},
-                                              {"t-shirt", GarmentKind::tshirt},
-                                              {"skirt", GarmentKind::skirt},
-                                              {"trousers", GarmentKind::trousers}};
-}  // namespace
-
+const NameTable<GarmentKind> kGarmentKinds = {{"tshirt", GarmentKind::tshirt}, {"t-shirt", GarmentKind::tshirt},
+    {"skirt", GarmentKind::skirt}, {"trousers", GarmentKind::trousers}};
 std::string to_string(GarmentKind kind) { return name_of(kind, kGarmentKinds); }
 
 GarmentKind parse_garment_kind(const std::string& text) { return parse_name(text, kGarmentKinds, "garment"); }

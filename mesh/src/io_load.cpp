@@ -45,14 +45,10 @@ std::string units_for_body(double file_extent) {
   return "";
 }
 
-namespace {
 const NameTable<UpAxis> kUpAxes = {{"+x", UpAxis::pos_x}, {"x", UpAxis::pos_x}, {"-x", UpAxis::neg_x},
-                                   {"+y", UpAxis::pos_y}, {"y", UpAxis::pos_y}, {"-y", UpAxis::neg_y},
-                                   {"+z", UpAxis::pos_z}, {"z", UpAxis::pos_z}, {"-z", UpAxis::neg_z}};
-}  // namespace
-
+    {"+y", UpAxis::pos_y}, {"y", UpAxis::pos_y}, {"-y", UpAxis::neg_y}, {"+z", UpAxis::pos_z}, {"z", UpAxis::pos_z},
+    {"-z", UpAxis::neg_z}};
 UpAxis parse_up_axis(const std::string& text) { return parse_name(text, kUpAxes, "up axis"); }
-
 std::string to_string(UpAxis axis) { return name_of(axis, kUpAxes); }
 
 const std::vector<std::string>& loadable_extensions() {

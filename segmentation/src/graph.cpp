@@ -13,15 +13,10 @@
 
 namespace dresskit {
 
-namespace {
 const NameTable<AffinityKind> kAffinities = {{"dihedral", AffinityKind::dihedral},
-                                             {"edge-length", AffinityKind::edge_length},
-                                             {"edge_length", AffinityKind::edge_length},
-                                             {"cotangent", AffinityKind::cotangent}};
-}  // namespace
-
+    {"edge-length", AffinityKind::edge_length}, {"edge_length", AffinityKind::edge_length},
+    {"cotangent", AffinityKind::cotangent}};
 AffinityKind parse_affinity(const std::string& text) { return parse_name(text, kAffinities, "affinity"); }
-
 std::string to_string(AffinityKind kind) { return name_of(kind, kAffinities); }
 
 namespace {

@@ -14,13 +14,9 @@
 
 namespace dresskit {
 
-namespace {
-const NameTable<LaplacianKind> kLaplacians = {
-    {"normalized", LaplacianKind::normalized}, {"normalised", LaplacianKind::normalized}, {"plain", LaplacianKind::plain}};
-}  // namespace
-
+const NameTable<LaplacianKind> kLaplacians = {{"normalized", LaplacianKind::normalized},
+    {"normalised", LaplacianKind::normalized}, {"plain", LaplacianKind::plain}};
 LaplacianKind parse_laplacian(const std::string& text) { return parse_name(text, kLaplacians, "laplacian"); }
-
 std::string to_string(LaplacianKind kind) { return name_of(kind, kLaplacians); }
 
 Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W,

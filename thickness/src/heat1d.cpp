@@ -53,15 +53,10 @@ class ThetaStepper {
 
 }  // namespace
 
-namespace {
 const NameTable<HeatScheme> kHeatSchemes = {{"explicit", HeatScheme::explicit_euler},
-                                            {"implicit", HeatScheme::implicit_euler},
-                                            {"crank-nicolson", HeatScheme::crank_nicolson},
-                                            {"cn", HeatScheme::crank_nicolson}};
-}  // namespace
-
+    {"implicit", HeatScheme::implicit_euler}, {"crank-nicolson", HeatScheme::crank_nicolson},
+    {"cn", HeatScheme::crank_nicolson}};
 HeatScheme parse_heat_scheme(const std::string& text) { return parse_name(text, kHeatSchemes, "heat scheme"); }
-
 std::string to_string(HeatScheme scheme) { return name_of(scheme, kHeatSchemes); }
 
 void solve_tridiagonal(const Eigen::VectorXd& sub, const Eigen::VectorXd& diag,
