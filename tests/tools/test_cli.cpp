@@ -1,6 +1,8 @@
 // dress-a-mesh end to end: exit codes, one-line errors naming the file, no partial output, inputs
 // never overwritten.
 #include <gtest/gtest.h>
+
+#include <regex>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -200,6 +202,17 @@ TEST(Cli, SimulateWritesResultFramesAndReport) {
   EXPECT_FALSE(report["nan_detected"].get<bool>());
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/result.obj")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/frame_00005.obj")));
+  // A shorter run into the same folder leaves only its own frames (and a file of the user's).
+  write(dir.file("out/notes.txt"), "mine");
+  write(dir.file("chain.json"), std::regex_replace(slurp(dir.file("chain.json")), std::regex("0\\.5, \"fps"),
+                                                   "0.2, \"fps"));
+  const CliRun shorter =
+      run(dir, "simulate " + dir.file("chain.json") + " -o " + dir.file("out") + " --frames");
+  ASSERT_EQ(shorter.code, 0) << shorter.err;
+  EXPECT_EQ(nlohmann::json::parse(slurp(dir.file("out/report.json")))["frames"], 2);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/frame_00002.obj")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out/frame_00003.obj")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("out/notes.txt")));
 }
 
 // Symplectic Euler at 1/25 s, far beyond its stability limit for denim: with a fixed step it blows

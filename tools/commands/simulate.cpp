@@ -15,6 +15,7 @@
 #include "dresskit/cloth/seams.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "common/output_folder.h"
 #include "common/progress.h"
 
 namespace dresskit::cli {
@@ -44,8 +45,7 @@ int inside_count(const Collider& c, const Eigen::MatrixX3d& x, double* deepest) 
 }  // namespace
 
 int SimulateCommand::run() {
-  using Clock = std::chrono::steady_clock;
-  ClothScene s = load_cloth_scene(scene);
+  const ClothScene s = load_cloth_scene(scene);
   // Outputs are result.obj, report.json and frame_NNNNN.obj in dir: none may be a file the run reads.
   std::vector<std::string> inputs = s.files;
   inputs.push_back(scene);
@@ -58,8 +58,15 @@ int SimulateCommand::run() {
     if (output_name && fs::equivalent(p.parent_path().empty() ? fs::path(".") : p.parent_path(), dir, same))
       throw InputError(input + ": the run would overwrite this input with its output; write to another folder");
   }
-  std::error_code ec;
-  if (!fs::create_directories(dir, ec) && ec) throw OutputError(dir + ": cannot create directory: " + ec.message());
+  // Everything is written into a fresh folder that replaces the outputs of an earlier run into dir
+  // as a whole, so frames of two runs are never mixed.
+  int code = 0;
+  write_folder(dir, [&](const fs::path& out) { code = simulate_into(s, out); }, inputs);
+  return code;
+}
+
+int SimulateCommand::simulate_into(const ClothScene& s, const fs::path& out) const {
+  using Clock = std::chrono::steady_clock;
   ClothSimulator sim(s.model, s.simulation);
   sim.set_pinned(s.pins);
   if (!s.pin_motion.particles.empty()) sim.set_pin_motion(s.pin_motion);
@@ -117,14 +124,14 @@ int SimulateCommand::run() {
         if (frames) {
           char name[32];
           std::snprintf(name, sizeof name, "frame_%05d.obj", k);
-          write_file_atomically((fs::path(dir) / name).string(), cloth_text());
+          write_file_atomically((out / name).string(), cloth_text());
         }
       },
       [&](const StepResult&) { progress.update(sim.time()); });
   progress.finish();
   const double wall = std::chrono::duration<double>(Clock::now() - t0).count();
   const StepTotals& tot = result.totals;
-  write_file_atomically((fs::path(dir) / "result.obj").string(), cloth_text());
+  write_file_atomically((out / "result.obj").string(), cloth_text());
   const int crossings_at_end = sim.intersections();
   double closest = std::numeric_limits<double>::infinity();
   for (const Collider& c : s.simulation.colliders) {
@@ -235,7 +242,7 @@ int SimulateCommand::run() {
     report["layer_order"] = {{"checked", order.checked}, {"violations", order.violations},
                              {"max_violations_over_frames", std::max(worst_order, order.violations)}};
   }
-  write_file_atomically((fs::path(dir) / "report.json").string(), report.dump(2) + "\n");
+  write_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
   std::cout << "simulated " << tot.steps << " steps (" << result.frames << " frames, " << sim.time() << " s) in "
             << wall << " s; max strain " << sim.max_strain() << "; " << result.stopped_reason << "\n";
   if (!result.ok) {
