@@ -133,7 +133,19 @@ std::vector<Fabric> load_fabrics(const std::string& path) {
     };
     table("stretching", r.stretching, 6, 4);
     table("bending", r.bending, 3, 5);
-    fabrics.push_back(from_record(r));
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 5; ++k)
+        if (r.bending[i][k] < 0.0)
+          throw InputError(where + ".bending[" + std::to_string(i) + "][" + std::to_string(k) +
+                           "] is negative: " + std::to_string(r.bending[i][k]));
+    // The stretching coefficients are fits and may be negative one by one (they are clamped at 0),
+    // but the cloth needs a positive stiffness along warp and weft, at rest and at the knee.
+    const Fabric f = from_record(r);
+    for (double theta : {0.0, M_PI / 2})
+      if (!(f.stiffness_at_rest(theta) > 0.0) || !(f.stiffness_at_knee(theta) > 0.0))
+        throw InputError(where + ".stretching gives no positive stiffness along the " +
+                         (theta == 0.0 ? "warp" : "weft"));
+    fabrics.push_back(f);
   }
   return fabrics;
 }

@@ -82,5 +82,18 @@ TEST(Fabric, BadFabricFilesNameTheFileAndField) {
   expect_error("{\"fabrics\": [{\"name\": \"x\", \"areal_density_kg_per_m2\": -1}]}", "must be positive");
   expect_error("{\"fabrics\": [{\"name\": \"x\", \"areal_density_kg_per_m2\": 0.2, \"stretching\": [[1]]}]}",
                "stretching");
+  // A fabric whose stretching has no positive stiffness along the warp, or a negative bending value.
+  auto fabric = [](const std::string& stretching_row, double bending) {
+    std::string rows = "[" + stretching_row;
+    for (int i = 1; i < 6; ++i) rows += ", " + stretching_row;
+    const std::string b = "[" + std::to_string(bending) + ", 1e-5, 1e-5, 1e-5, 1e-5]";
+    return R"({"fabrics": [{"name": "x", "areal_density_kg_per_m2": 0.2, "stretching": )" + rows +
+           R"(], "bending": [)" + b + ", " + b + ", " + b + "]}]}";
+  };
+  expect_error(fabric("[-40, 1, -60, 5]", 1e-5), "no positive stiffness along the warp");
+  expect_error(fabric("[40, 1, 60, 5]", -1e-5), "bending[0][0] is negative");
+  const std::string good = dir.file("good.json");
+  std::ofstream(good) << fabric("[40, -1, 60, -5]", 1e-5);  // negative cross terms: a fit, clamped
+  EXPECT_EQ(load_fabrics(good).size(), 1u);
   EXPECT_THROW(load_fabrics(dir.file("missing.json")), InputError);
 }
