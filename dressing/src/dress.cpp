@@ -41,13 +41,9 @@ MeshFile MeshFile::given(std::string name, TriangleMesh mesh) {
   return f;
 }
 
-namespace {
-const NameTable<DressQuality> kQualities = {
-    {"fast", DressQuality::fast}, {"balanced", DressQuality::balanced}, {"accurate", DressQuality::accurate}};
-}  // namespace
-
+const NameTable<DressQuality> kQualities = {{"fast", DressQuality::fast}, {"balanced", DressQuality::balanced},
+    {"accurate", DressQuality::accurate}};
 DressQuality parse_quality(const std::string& text) { return parse_name(text, kQualities, "quality"); }
-
 std::string to_string(DressQuality quality) { return name_of(quality, kQualities); }
 
 namespace {
@@ -503,23 +499,26 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       };
       settle();
       // A garment untangled by holding its parts apart may be pressed between them and the body
-      // tighter than its length limits allow; where that stalls the settle, it settles from its
-      // placement with the crossing regions rebuilt (crossing itself more often, which settling
-      // does not undo, but free to settle).
+      // tighter than its length limits allow; where that stalls the settle, it settles again with
+      // steps near the body half as long (particles there move at most half a spring's
+      // length a step), from its placement with the crossing regions rebuilt where there is one
+      // (crossing itself more often, which settling does not undo, but free to settle).
       bool retried = false;
       std::string held;
       if (result.settle.stalled) {
+        retried = true;
+        bool rebuilt_any = false;
         for (std::size_t k = 0; k < result.garments.size(); ++k) {
           DressedGarment& g = result.garments[k];
           if (rebuilt[k].first.rows() == 0 || rebuilt[k].first == g.placed) continue;
           std::tie(g.placed, g.crossings_placed) = rebuilt[k];
-          retried = true;
+          rebuilt_any = true;
         }
-        if (retried) {
-          held += "; settling the untangled placement " + result.settle.stopped_reason +
-                  ", settled from the one with the crossing regions rebuilt";
-          settle();
-        }
+        held += "; settling " + std::string(rebuilt_any ? "the untangled placement " : "") +
+                result.settle.stopped_reason + ", settled again with shorter steps near the body" +
+                (rebuilt_any ? " from the placement with the crossing regions rebuilt" : "");
+        o.contact_travel *= 0.5;
+        settle();
       }
       result.settled = true;
       std::string belts;

@@ -126,7 +126,7 @@ struct SimulationOptions {
   double max_strain_change = 0.05; ///< per step [unitless]
   /// Adaptive stepping near colliders: a particle within one spring length of a collider moves at
   /// most this fraction of its springs' mean rest length per step (0: no such bound) [unitless].
-  double contact_travel = 0.5;
+  double contact_travel = 1.0;
 };
 
 /// Pinned particles driven along a path: turned about `axis` through `centre` at a constant rate and
