@@ -86,7 +86,7 @@
     var material = new THREE.MeshStandardMaterial({
       vertexColors: THREE.VertexColors !== undefined ? THREE.VertexColors : true,
       side: THREE.DoubleSide, roughness: 0.8, metalness: 0.0,
-      polygonOffset: m.role === 'body', polygonOffsetFactor: 1, polygonOffsetUnits: 1
+      polygonOffset: m.role === 'body', polygonOffsetFactor: 2, polygonOffsetUnits: 8
     });
     var mesh = new THREE.Mesh(geometry, material);
     scene.add(mesh);
