@@ -7,6 +7,8 @@
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/report/page.h"
+#include "report_page.h"
 
 namespace dresskit {
 namespace fs = std::filesystem;
@@ -132,17 +134,29 @@ json report_json(const DressResult& r) {
   return report;
 }
 
-}  // namespace
-
-std::string write_dress_outputs(const std::string& folder, const DressResult& r, const DressOutputOptions& options) {
-  using Clock = std::chrono::steady_clock;
-  const auto start = Clock::now();
+json report_with_extra(const DressResult& r, const DressOutputOptions& options) {
   json report = report_json(r);
   if (!options.report_extra.empty()) {
     const json extra = json::parse(options.report_extra, nullptr, false);
     if (!extra.is_object()) throw InputError("report extra: not the text of a JSON object");
     report.update(extra);
   }
+  return report;
+}
+
+json stages_json(const DressResult& r) {
+  json stages = json::array();
+  for (const DressStage& s : r.stages)
+    stages.push_back({{"name", s.name}, {"ran", s.ran}, {"seconds", s.seconds}, {"reason", s.reason}});
+  return stages;
+}
+
+}  // namespace
+
+std::string write_dress_outputs(const std::string& folder, const DressResult& r, const DressOutputOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = Clock::now();
+  json report = report_with_extra(r, options);
   const fs::path dir(folder);
   for (const DressedGarment& g : r.garments) {
     save_mesh(in_file_order(g, g.placed), (dir / (g.name + ".placed.obj")).string());
@@ -162,17 +176,36 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
     for (const DressedGarment& g : r.garments) append_mesh(all, g.mesh, g.name + "_");
     save_mesh(all, (dir / "segments.ply").string());
   }
-  json stages = json::array();
-  for (const DressStage& s : r.stages)
-    stages.push_back({{"name", s.name}, {"ran", s.ran}, {"seconds", s.seconds}, {"reason", s.reason}});
+  // The page's meshes and colour maps are made before the write stage's time is taken; its text,
+  // which holds report.json's, after.
+  ReportPage page;
+  if (options.page) page = dressing_detail::dress_page(r, options.command, "");
+  json stages = stages_json(r);
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stages.push_back({{"name", "write"}, {"ran", true}, {"seconds", seconds},
-                    {"reason", std::to_string(2 * r.garments.size() + 1 + options.segments) + " files and the report"}});
+                    {"reason", std::to_string(2 * r.garments.size() + 1 + options.segments) + " files and the report" +
+                                   (options.page ? " and its page" : "")}});
   report["stages"] = stages;
   report["seconds"] = r.seconds + seconds;
   const std::string text = report.dump(2) + "\n";
   write_file_atomically((dir / "report.json").string(), text);
+  if (options.page) {
+    page.report_json = text;
+    write_report_html((dir / "report.html").string(), page);
+  }
   return text;
+}
+
+void write_dress_failure_page(const std::string& folder, const DressResult& r, const DressOutputOptions& options) {
+  const std::string failure = "settling stopped after " + std::to_string(r.settle.totals.steps) +
+                              " steps: " + (r.settle.failure.empty() ? r.settle.stopped_reason : r.settle.failure);
+  ReportPage page = dressing_detail::dress_page(r, options.command, failure);
+  json report = report_with_extra(r, options);
+  report["stages"] = stages_json(r);
+  report["seconds"] = r.seconds;
+  report["failure"] = failure;
+  page.report_json = report.dump(2) + "\n";
+  write_report_html((fs::path(folder) / "report.html").string(), page);
 }
 
 }  // namespace dresskit

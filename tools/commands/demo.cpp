@@ -80,7 +80,8 @@ int DemoCommand::run() {
   const DressResult r = dress(mannequin, outfit, options);
   progress.finish();
   if (r.settled && !r.settle.ok) {
-    std::cerr << "dress-a-mesh: demo: settling stopped: " << r.settle.failure << " (nothing written)\n";
+    std::cerr << "dress-a-mesh: demo: settling stopped: " << r.settle.failure << " ("
+              << write_failure_page(dir, r, "demo") << ")\n";
     return static_cast<int>(ExitCode::simulation_failed);
   }
 
@@ -97,6 +98,7 @@ int DemoCommand::run() {
       for (const char* ext : {"obj", "ply", "glb"}) save_mesh(m.mesh, (folder / (m.name + "." + ext)).string());
     DressOutputOptions o;
     o.report_extra = scene.dump();
+    o.command = "demo";
     write_dress_outputs(folder.string(), r, o);
   });
   for (const DressedGarment& g : r.garments) {

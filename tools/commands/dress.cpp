@@ -78,6 +78,23 @@ void show_progress(const std::string& command, DressOptions& options, Progress& 
   };
 }
 
+std::string write_failure_page(const std::string& dir, const DressResult& r, const std::string& command,
+                               const std::vector<std::string>& inputs) {
+  try {
+    write_folder(
+        dir,
+        [&](const fs::path& folder) {
+          DressOutputOptions o;
+          o.command = command;
+          write_dress_failure_page(folder.string(), r, o);
+        },
+        inputs);
+  } catch (const std::exception& e) {
+    return std::string("nothing written: ") + e.what();
+  }
+  return "only " + (fs::path(dir) / "report.html").string() + " written: what failed and the last good state";
+}
+
 int DressCommand::run() {
   const MeshFile body_file = MeshFile::file(body, load_options(body_units, units, up), body_labels);
   std::vector<GarmentFile> garment_files;
@@ -101,17 +118,16 @@ int DressCommand::run() {
   show_progress("dress", options, progress);
   DressResult r = dress(body_file, garment_files, options);
   progress.finish();
-  if (r.settled && !r.settle.ok) {
-    std::cerr << "dress-a-mesh: " << body << ": settling stopped: " << r.settle.failure
-              << " (nothing written)\n";
-    return static_cast<int>(ExitCode::simulation_failed);
-  }
-
   std::string report;
   std::vector<std::string> inputs = garments;
   inputs.push_back(body);
   inputs.push_back(body_labels);
   inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
+  if (r.settled && !r.settle.ok) {
+    std::cerr << "dress-a-mesh: " << body << ": settling stopped: " << r.settle.failure << " ("
+              << write_failure_page(dir, r, "dress", inputs) << ")\n";
+    return static_cast<int>(ExitCode::simulation_failed);
+  }
   write_folder(
       dir,
       [&](const fs::path& folder) {

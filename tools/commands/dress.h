@@ -17,15 +17,21 @@ struct DressCommand : Command {
   bool no_settle = false, as_json = false, segments = false;
 
   void add_to(CLI::App& app) override;
-  /// Writes DIR/report.json, DIR/dressed.glb and per garment DIR/<stem>.placed.obj and
-  /// DIR/<stem>.dressed.obj (with --segments also DIR/segments.ply), all together once the run
+  /// Writes DIR/report.json, DIR/report.html, DIR/dressed.glb and per garment DIR/<stem>.placed.obj
+  /// and DIR/<stem>.dressed.obj (with --segments also DIR/segments.ply), all together once the run
   /// succeeded; prints one line per stage on stderr. Returns the exit code (4 when settling blew
-  /// up: nothing is written); throws InputError / OutputError like the other commands.
+  /// up: DIR/report.html alone is written); throws InputError / OutputError like the other commands.
   int run() override;
 };
 
 /// Prints one line per stage on stderr ("COMMAND: stage  seconds  what it did"), and draws the
 /// progress bar while settling (only on a terminal).
 void show_progress(const std::string& command, DressOptions& options, Progress& progress);
+
+/// For a run whose settling failed: writes DIR/report.html alone (what failed, the garments placed
+/// and at the last good state) as the run's outputs (write_folder). Returns what was written, for
+/// the error line; a page that cannot be written is said there, not thrown.
+std::string write_failure_page(const std::string& dir, const DressResult& result, const std::string& command,
+                               const std::vector<std::string>& inputs = {});
 
 }  // namespace dresskit::cli

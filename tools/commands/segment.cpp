@@ -11,6 +11,7 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "common/output_folder.h"
+#include "common/pages.h"
 
 namespace dresskit::cli {
 namespace {
@@ -292,12 +293,15 @@ int SegmentCommand::run() {
   for (size_t p = 0; p < r.parts.size(); ++p)
     meshes.emplace_back(r.parts[p].name + ".obj",
                         part_mesh(mesh, r.face_labels, static_cast<int>(p)));
-  write_outputs(output, {{"labels.json", report.dump(1) + "\n"}}, meshes, path);
+  json summary = report;
+  summary.erase("vertex_labels");
+  summary.erase("face_labels");
+  write_outputs(output,
+                {{"labels.json", report.dump(1) + "\n"},
+                 {"report.html", report_html(segment_page(path, coloured, summary))}},
+                meshes, path);
 
   if (as_json) {
-    json summary = report;
-    summary.erase("vertex_labels");
-    summary.erase("face_labels");
     std::cout << summary.dump(2) << "\n";
     return 0;
   }
@@ -321,7 +325,7 @@ int SegmentCommand::run() {
   if (r.isolated_vertices)
     std::printf("%d vertices without a face (%d duplicates labelled, the rest -1)\n",
                 r.isolated_vertices, duplicates);
-  std::printf("wrote labels.json, segments.ply and %zu part OBJs to %s\n", r.parts.size(),
+  std::printf("wrote labels.json, segments.ply, report.html and %zu part OBJs to %s\n", r.parts.size(),
               output.c_str());
   return 0;
 }

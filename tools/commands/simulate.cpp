@@ -16,6 +16,7 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "common/output_folder.h"
+#include "common/pages.h"
 #include "common/progress.h"
 
 namespace dresskit::cli {
@@ -24,7 +25,7 @@ using json = nlohmann::json;
 
 void SimulateCommand::add_to(CLI::App& app) {
   command = app.add_subcommand("simulate", "run a cloth scene (JSON, see docs/scenes.md); writes "
-                                           "result.obj, report.json and optional frames");
+                                           "result.obj, report.json, report.html and optional frames");
   command->add_option("SCENE", scene, "scene file (.json)")->required();
   command->add_option("-o,--output", dir, "output directory")->required();
   command->add_flag("--frames", frames, "also write frame_NNNNN.obj at the scene's fps");
@@ -53,7 +54,7 @@ int SimulateCommand::run() {
     std::error_code same;
     const fs::path p(input);
     const std::string name = p.filename().string();
-    const bool output_name = name == "result.obj" || name == "report.json" ||
+    const bool output_name = name == "result.obj" || name == "report.json" || name == "report.html" ||
                              (name.rfind("frame_", 0) == 0 && p.extension() == ".obj");
     if (output_name && fs::equivalent(p.parent_path().empty() ? fs::path(".") : p.parent_path(), dir, same))
       throw InputError(input + ": the run would overwrite this input with its output; write to another folder");
@@ -106,6 +107,7 @@ int SimulateCommand::simulate_into(const ClothScene& s, const fs::path& out) con
   const int crossings_at_start = sim.intersections();
   int worst_crossings = crossings_at_start;
   std::vector<double> energy;
+  const Eigen::MatrixX3d start = sim.positions();
   Progress progress("simulate", s.run.duration, "s simulated");
   const auto t0 = Clock::now();
   const RunResult result = dresskit::run(
@@ -243,6 +245,8 @@ int SimulateCommand::simulate_into(const ClothScene& s, const fs::path& out) con
                              {"max_violations_over_frames", std::max(worst_order, order.violations)}};
   }
   write_file_atomically((out / "report.json").string(), report.dump(2) + "\n");
+  write_report_html((out / "report.html").string(),
+                    simulate_page(scene, s, start, sim.positions(), result, report));
   std::cout << "simulated " << tot.steps << " steps (" << result.frames << " frames, " << sim.time() << " s) in "
             << wall << " s; max strain " << sim.max_strain() << "; " << result.stopped_reason << "\n";
   if (!result.ok) {
