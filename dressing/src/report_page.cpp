@@ -23,22 +23,6 @@ Eigen::VectorXd distance_mm(const Eigen::MatrixX3d& V, const InsideTest& body) {
   return d;
 }
 
-/// Each vertex's largest strain over its edges against the rest shape (length / rest length − 1).
-Eigen::VectorXd vertex_strain(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d& rest,
-                              const Eigen::MatrixX3i& F) {
-  Eigen::VectorXd s = Eigen::VectorXd::Constant(V.rows(), -1.0);
-  for (Eigen::Index f = 0; f < F.rows(); ++f) {
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      const double r = (rest.row(a) - rest.row(b)).norm();
-      if (!(r > 0.0)) continue;
-      const double e = (V.row(a) - V.row(b)).norm() / r - 1.0;
-      s(a) = std::max(s(a), e), s(b) = std::max(s(b), e);
-    }
-  }
-  return s.unaryExpr([](double v) { return v < -0.5 ? 0.0 : v; });  // a vertex of no edge: none
-}
-
 std::string yes(bool ran) { return ran ? "yes" : "left out"; }
 
 std::string garment_list(const DressResult& r) {

@@ -20,51 +20,48 @@ std::string report_number(double value, int digits) {
   return text;
 }
 
+namespace {
+ReportSection section(ReportSection::Kind kind, std::string title, std::string text) {
+  ReportSection s;
+  s.kind = kind;
+  s.title = std::move(title);
+  s.text = std::move(text);
+  return s;
+}
+}  // namespace
+
 ReportSection ReportSection::table_of(std::string title, std::vector<std::string> columns,
                                       std::vector<std::vector<std::string>> rows,
                                       std::string note) {
-  ReportSection s;
-  s.kind = Kind::table;
-  s.title = std::move(title);
+  ReportSection s = section(Kind::table, std::move(title), std::move(note));
   s.columns = std::move(columns);
   s.rows = std::move(rows);
-  s.text = std::move(note);
   return s;
 }
 
 ReportSection ReportSection::bars_of(std::string title, std::vector<std::string> labels,
                                      std::vector<double> values, std::string unit,
                                      std::string note) {
-  ReportSection s;
-  s.kind = Kind::bars;
-  s.title = std::move(title);
+  ReportSection s = section(Kind::bars, std::move(title), std::move(note));
   s.labels = std::move(labels);
   s.values = std::move(values);
   s.unit = std::move(unit);
-  s.text = std::move(note);
   return s;
 }
 
 ReportSection ReportSection::line_of(std::string title, std::vector<double> x,
                                      std::vector<double> y, std::string x_unit, std::string unit,
                                      std::string note) {
-  ReportSection s;
-  s.kind = Kind::line;
-  s.title = std::move(title);
+  ReportSection s = section(Kind::line, std::move(title), std::move(note));
   s.x = std::move(x);
   s.values = std::move(y);
   s.x_unit = std::move(x_unit);
   s.unit = std::move(unit);
-  s.text = std::move(note);
   return s;
 }
 
 ReportSection ReportSection::text_of(std::string title, std::string text) {
-  ReportSection s;
-  s.kind = Kind::text;
-  s.title = std::move(title);
-  s.text = std::move(text);
-  return s;
+  return section(Kind::text, std::move(title), std::move(text));
 }
 
 }  // namespace dresskit

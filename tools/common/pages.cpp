@@ -137,20 +137,6 @@ Eigen::VectorXd collider_distance_mm(const std::vector<Collider>& colliders,
   return d;
 }
 
-Eigen::VectorXd vertex_strain(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d& rest,
-                              const Eigen::MatrixX3i& F) {
-  Eigen::VectorXd s = Eigen::VectorXd::Zero(V.rows());
-  for (Eigen::Index f = 0; f < F.rows(); ++f)
-    for (int k = 0; k < 3; ++k) {
-      const int a = F(f, k), b = F(f, (k + 1) % 3);
-      const double r = (rest.row(a) - rest.row(b)).norm();
-      if (!(r > 0.0)) continue;
-      const double e = (V.row(a) - V.row(b)).norm() / r - 1.0;
-      s(a) = std::max(s(a), e), s(b) = std::max(s(b), e);
-    }
-  return s;
-}
-
 }  // namespace
 
 ReportPage segment_page(const std::string& path, const TriangleMesh& mesh, const json& summary) {

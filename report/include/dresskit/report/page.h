@@ -94,6 +94,11 @@ std::string report_html(const ReportPage& page);
 /// naming the path when it cannot be written.
 void write_report_html(const std::string& path, const ReportPage& page);
 
+/// Each vertex's largest stretch over its edges against the rest shape (length / rest length − 1;
+/// 0 where no edge of it is longer than at rest): the page's strain colour map.
+Eigen::VectorXd vertex_strain(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d& rest,
+                              const Eigen::MatrixX3i& F);
+
 /// A number as the page's tables show it: `digits` significant digits, no exponent for ordinary
 /// sizes; "–" for a non-finite value.
 std::string report_number(double value, int digits = 3);
