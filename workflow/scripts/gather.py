@@ -207,13 +207,14 @@ def _draw_views(fig, meshes):
     garment = 0
     for name, verts, faces in meshes:
         base = skin if name == "body" else palette[garment % len(palette)]
+        # Garments lie millimetres over the body and over each other (inside to outside in the
+        # file): sorting by centroid alone would let the larger triangles beneath cover them, so
+        # each layer is sorted as if a little nearer than the one under it.
+        bias.append(np.full(len(faces), 0.0 if name == "body" else 0.02 * (1 + garment)))
         if name != "body":
             garment += 1
         tris.append(verts[faces])
         colours.append(np.repeat(base[None, :], len(faces), axis=0))
-        # Garments lie millimetres over the body, whose triangles are larger: sorting by centroid
-        # alone would let body triangles cover cloth, so cloth is sorted as if a little nearer.
-        bias.append(np.full(len(faces), 0.0 if name == "body" else 0.02))
     if not tris:
         return
     tris = np.concatenate(tris)
@@ -292,7 +293,7 @@ def write_contact_sheet(out, lines, columns=None):
 
     tiles = []
     for line in lines:
-        title = "%s  %s" % (line["id"] or "line %s" % line["line"], line["status"])
+        title = "%s (line %s)  %s" % (line["id"] or "no id", line["line"], line["status"])
         if line["status"] == "ok":
             folder = row_folder(out, line["id"])
             glb, preview = os.path.join(folder, "dressed.glb"), os.path.join(folder, "preview.png")
@@ -313,12 +314,17 @@ def write_contact_sheet(out, lines, columns=None):
             padded[:h, :w] = image[:h, :w]
             image = padded
         tiles.append(image)
-    columns = columns or max(1, min(10, math.ceil(math.sqrt(len(tiles) * 1.5))))
-    rows = math.ceil(len(tiles) / columns)
-    sheet = np.full((rows * TILE_H, columns * TILE_W, 3), 255, np.uint8)
+    # One line up to 6 rows, else about square; tiles shrink (every k-th pixel) so that the sheet
+    # stays under about 50 megapixels.
+    count = max(1, len(tiles))
+    columns = columns or (count if count <= 6 else math.ceil(math.sqrt(count * TILE_H / TILE_W)))
+    step = max(1, math.ceil(math.sqrt(count * TILE_W * TILE_H / 50e6)))
+    tile_h, tile_w = len(range(0, TILE_H, step)), len(range(0, TILE_W, step))
+    rows = math.ceil(count / columns)
+    sheet = np.full((rows * tile_h, columns * tile_w, 3), 255, np.uint8)
     for i, tile in enumerate(tiles):
         r, c = divmod(i, columns)
-        sheet[r * TILE_H:(r + 1) * TILE_H, c * TILE_W:(c + 1) * TILE_W] = tile
+        sheet[r * tile_h:(r + 1) * tile_h, c * tile_w:(c + 1) * tile_w] = tile[::step, ::step]
     path = os.path.join(out, "contact_sheet.png")
     plt.imsave(path + ".tmp.png", sheet)
     os.replace(path + ".tmp.png", path)
