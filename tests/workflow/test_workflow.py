@@ -84,7 +84,7 @@ class Runner:
         log = os.path.join(self.tmp, "snakemake-%d.log" % self.count)
         print("$ " + " ".join(command), flush=True)
         started = time.time()
-        # Its own session, so that a run past its time is interrupted whole (Snakemake then
+        # In a process group of its own, so that a run past its time is interrupted whole (Snakemake then
         # cancels its Slurm jobs) and, failing that, killed whole.
         p = subprocess.Popen(command, cwd=self.tmp, env=env or environment(), stdout=subprocess.PIPE,
                              stderr=subprocess.STDOUT, text=True, start_new_session=True)
@@ -352,6 +352,9 @@ def test_slurm(runner, data):
             print("  " + (message.splitlines()[-1] if message else "stopped"))
             if code != 0:
                 raise Failed("scripts/slurm-local stop failed: " + message)
+            code, message = slurm_local(source, "status", 30)
+            if code == 0:
+                raise Failed("the cluster still runs after scripts/slurm-local stop: " + message)
 
 
 def main():
