@@ -31,7 +31,7 @@ import time
 SKIP = 77
 BODY = "bodies/mh_girl_child_11y.obj"
 GARMENT = "garments/mh_female_casualsuit01.obj"
-RUN_TIMEOUT = 300  # seconds for one snakemake run; ctest's own timeout is longer
+RUN_TIMEOUT = 180  # seconds for one snakemake run; the few runs and cluster start/stop stay within ctest's 900
 
 
 class Failed(Exception):
