@@ -87,7 +87,7 @@ class Runner:
         # In a process group of its own, so that a run past its time is interrupted whole (Snakemake then
         # cancels its Slurm jobs) and, failing that, killed whole.
         p = subprocess.Popen(command, cwd=self.tmp, env=env or environment(), stdout=subprocess.PIPE,
-                             stderr=subprocess.STDOUT, text=True, start_new_session=True)
+                             stderr=subprocess.STDOUT, text=True, preexec_fn=os.setsid)
         try:
             stdout, _ = p.communicate(timeout=RUN_TIMEOUT)
         except BaseException as e:  # past its time, or this test ended by a signal
