@@ -493,7 +493,11 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         }
         sim->set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
         if (!belt.empty()) sim->set_pinned(belt);
+        result.settle_time.clear(), result.settle_energy.clear(), result.settle_strain.clear();
         result.settle = run(*sim, run_options, {}, [&](const StepResult&) {
+          result.settle_time.push_back(sim->time());
+          result.settle_energy.push_back(sim->elastic_energy());
+          result.settle_strain.push_back(sim->max_strain());
           if (options.on_settle) options.on_settle(sim->time(), duration);
         });
       };

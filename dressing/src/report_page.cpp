@@ -95,10 +95,12 @@ void add_tables(const DressResult& r, ReportPage& page) {
                                 {{r.settle.stopped_reason, std::to_string(t.steps),
                                   std::to_string(t.retries), report_number(t.smallest_dt),
                                   r.settle.rest_at >= 0.0 ? report_number(r.settle.rest_at) : "–",
-                                  report_number(r.settle.mean_speed)}},
-                                "Energy and strain over the settle are not recorded by the "
-                                "dressing pipeline; the colour maps show them at "
-                                "its end."));
+                                  report_number(r.settle.mean_speed)}}));
+    page.sections.push_back(ReportSection::line_of("Elastic energy over the settle", r.settle_time,
+                                                   r.settle_energy, "s", "J"));
+    page.sections.push_back(ReportSection::line_of(
+        "Largest strain over the settle", r.settle_time, r.settle_strain, "s", "",
+        "The largest structural spring strain (length over rest length − 1) after each step."));
   }
 
   rows.clear();

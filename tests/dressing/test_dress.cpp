@@ -166,6 +166,14 @@ TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   EXPECT_NE(settle->reason.find("untangled placement stalled"), std::string::npos) << settle->reason;
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
   EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored);
+  // The settle step by step, of the attempt kept: one entry per step, in time order, to its end.
+  ASSERT_EQ(r.settle_time.size(), static_cast<std::size_t>(r.settle.totals.steps));
+  ASSERT_EQ(r.settle_energy.size(), r.settle_time.size());
+  ASSERT_EQ(r.settle_strain.size(), r.settle_time.size());
+  EXPECT_TRUE(std::is_sorted(r.settle_time.begin(), r.settle_time.end()));
+  EXPECT_NEAR(r.settle_time.back(), 0.5, 0.01);
+  for (double e : r.settle_energy) EXPECT_TRUE(std::isfinite(e) && e >= 0.0) << e;
+  for (double e : r.settle_strain) EXPECT_TRUE(std::isfinite(e) && e < 1.0) << e;
 }
 
 // Two garment files given inside to outside (the casualsuit's jeans and t-shirt, written apart):

@@ -56,6 +56,8 @@ TEST(ReportBrowser, TheDemosPageShowsTheDressedMannequinShadedWithNoScriptError)
   EXPECT_NE(load.dom.find("<h2>Stages</h2>"), std::string::npos);
   EXPECT_NE(load.dom.find("<h2>Time per stage</h2>"), std::string::npos);
   EXPECT_NE(load.dom.find("<h2>Layer gaps</h2>"), std::string::npos);
+  EXPECT_NE(load.dom.find("<h2>Elastic energy over the settle</h2>"), std::string::npos);
+  EXPECT_NE(load.dom.find("<h2>Largest strain over the settle</h2>"), std::string::npos);
   for (const char* toggle :
        {">mannequin<", ">trousers<", ">tshirt<", ">parts<", ">distance to the body<", ">strain<"})
     EXPECT_NE(load.dom.find(toggle), std::string::npos) << toggle;

@@ -117,6 +117,9 @@ struct DressResult {
   std::vector<DressStage> stages;
   bool settled = false;   ///< the settle stage ran
   RunResult settle;       ///< when it ran
+  /// The settle step by step (the attempt kept): simulated time [s], elastic energy [J] and
+  /// largest structural strain [unitless] after each step.
+  std::vector<double> settle_time, settle_energy, settle_strain;
   /// Edge–triangle crossings between different garments at the end (0 = the layers kept apart),
   /// and the gap between consecutive layers where they overlap: of the outer garment's vertices
   /// within 2 cm of the inner one, their count and the 5th percentile and median of their distance
