@@ -40,6 +40,11 @@ browser::Load load_without_errors(const std::string& chromium, const std::string
   return r;
 }
 
+// The page has a section of each title.
+void expect_sections(const std::string& dom, const std::vector<std::string>& titles) {
+  for (const std::string& t : titles) EXPECT_NE(dom.find("<h2>" + t + "</h2>"), std::string::npos) << t;
+}
+
 }  // namespace
 
 TEST(ReportBrowser, TheDemosPageShowsTheDressedMannequinShadedWithNoScriptError) {
@@ -53,11 +58,8 @@ TEST(ReportBrowser, TheDemosPageShowsTheDressedMannequinShadedWithNoScriptError)
 
   const browser::Load load = load_without_errors(chromium, page, dir);
   EXPECT_NE(load.dom.find("demo: mannequin in trousers, tshirt"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Stages</h2>"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Time per stage</h2>"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Layer gaps</h2>"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Elastic energy over the settle</h2>"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Largest strain over the settle</h2>"), std::string::npos);
+  expect_sections(load.dom, {"Stages", "Time per stage", "Layer gaps", "Elastic energy over the settle",
+                             "Largest strain over the settle"});
   for (const char* toggle :
        {">mannequin<", ">trousers<", ">tshirt<", ">parts<", ">distance to the body<", ">strain<"})
     EXPECT_NE(load.dom.find(toggle), std::string::npos) << toggle;
@@ -88,8 +90,7 @@ TEST(ReportBrowser, ASegmentationsPageShowsItsPartsWithNoScriptError) {
       test::cli::run(dir, "segment " + dir.file("mannequin.obj") + " -o " + dir.file("seg"));
   ASSERT_EQ(run.code, 0) << run.err;
   const browser::Load load = load_without_errors(chromium, dir.file("seg/report.html"), dir);
-  EXPECT_NE(load.dom.find("<h2>Parts</h2>"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Spectrum</h2>"), std::string::npos);
+  expect_sections(load.dom, {"Parts", "Spectrum"});
 }
 
 // A simulation that blows up: its page says what failed and shows the cloth at the last good state.
@@ -109,7 +110,7 @@ TEST(ReportBrowser, AFailedSimulationsPageSaysWhatFailedAndShowsTheLastGoodState
   EXPECT_NE(load.dom.find("What failed:"), std::string::npos);
   EXPECT_NE(load.dom.find("blow-up"), std::string::npos);
   EXPECT_NE(load.dom.find(">last good state<"), std::string::npos);
-  EXPECT_NE(load.dom.find("<h2>Elastic energy over time</h2>"), std::string::npos);
+  expect_sections(load.dom, {"Elastic energy over time"});
 }
 
 // Dressing whose settling failed: the page alone, saying so, with the garments placed and where

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/names.h"
 
 namespace dresskit {
 namespace {
@@ -58,16 +59,9 @@ Composition parse_composition(const std::string& text) {
     if (eq == std::string::npos || eq == 0 || eq + 1 == entry.size())
       throw InputError("composition entry '" + entry + "' is not fibre=fraction");
     const std::string value = entry.substr(eq + 1);
-    std::size_t used = 0;
-    double fraction = 0.0;
-    try {
-      fraction = std::stod(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != value.size())
-      throw InputError("composition entry '" + entry + "': '" + value + "' is not a number");
-    composition.emplace_back(entry.substr(0, eq), fraction);
+    const std::optional<double> fraction = parse_number(value);
+    if (!fraction) throw InputError("composition entry '" + entry + "': '" + value + "' is not a number");
+    composition.emplace_back(entry.substr(0, eq), *fraction);
   }
   if (composition.empty()) throw InputError("composition '" + text + "' is empty");
   return composition;

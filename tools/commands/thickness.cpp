@@ -10,6 +10,7 @@
 
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/names.h"
 
 namespace dresskit::cli {
 namespace {
@@ -57,16 +58,9 @@ std::vector<double> parse_areas(const std::string& text) {
   std::stringstream in(text);
   std::string item;
   while (std::getline(in, item, ',')) {
-    std::size_t used = 0;
-    double value = 0.0;
-    try {
-      value = std::stod(item, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != item.size() || item.empty())
-      throw InputError("--panel-areas: '" + item + "' is not a number");
-    areas.push_back(value);
+    const std::optional<double> value = parse_number(item);
+    if (!value) throw InputError("--panel-areas: '" + item + "' is not a number");
+    areas.push_back(*value);
   }
   return areas;
 }

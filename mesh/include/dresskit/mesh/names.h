@@ -2,6 +2,8 @@
 // Names of enumerated options: one table per enum serves reading a name (with its aliases) and
 // printing it, so that the two cannot disagree.
 #include <initializer_list>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +35,20 @@ E parse_name(const std::string& text, NameTable<E> names, const std::string& wha
   for (std::size_t k = 0; k < first.size(); ++k)
     list += (k == 0 ? "" : k + 1 == first.size() ? " or " : ", ") + first[k];
   throw InputError(what + ": '" + text + "' is not " + list);
+}
+
+/// The number `text` spells out in full (std::stod on the whole text: no trailing characters), or
+/// nothing for an empty text, a text that is not a number or one out of range.
+inline std::optional<double> parse_number(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used != text.size()) return std::nullopt;
+  return value;
 }
 
 /// The value's first name in the table ("?" for a value it lacks).
