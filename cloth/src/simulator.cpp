@@ -392,6 +392,12 @@ StepResult ClothSimulator::try_step(double dt) {
   // layer below its thickness limit or open a sewn stitch: then the length limits, the sewing and
   // the collider pass run again, and the cloth–cloth pass after them (up to five more rounds; later
   // rounds rarely have anything to do).
+  // A step that has blown up already fails before the cloth–cloth collisions, which on an
+  // exploded state find millions of candidate pairs (minutes and gigabytes before the check below).
+  if (r.ok && self_ && x_.allFinite() && max_strain() > options_.blow_up_strain) {
+    r.ok = false;
+    r.failure = blow_up_report(x_integrated, time_ + dt);
+  }
   t = Clock::now();
   for (int round = 0; round < 6 && r.ok && self_ && x_.allFinite(); ++round) {
     if (round > 0) {

@@ -69,6 +69,27 @@ TEST(Run, StopsAndFailsWhenItsStepsStayNearTheSmallest) {
   EXPECT_GE(all.time(), 0.2 - 1e-9);
 }
 
+// A step that blows up fails before its cloth–cloth collisions run (on an exploded state they find
+// millions of candidate pairs): symplectic Euler on denim at 1/25 s, far beyond its stability limit.
+TEST(Run, ABlowUpFailsBeforeTheClothClothCollisions) {
+  SimulationOptions o = test::bare_options(Integrator::symplectic_euler);
+  o.dt = 0.04;
+  o.adaptive = false;
+  o.strain_limiting = false;
+  o.self_collision = true;
+  ClothModel model = build_cloth(make_grid({0.5, 0.5}, {16, 16}, {0, 0, 0}, {0, 0, 1}),
+                                 fabric_by_name("11oz-black-denim"));
+  ClothSimulator sim(model, o);
+  sim.set_pinned({240, 255});
+  StepResult failed;
+  for (int step = 0; step < 25 && failed.ok; ++step) failed = sim.step();
+  ASSERT_FALSE(failed.ok);
+  EXPECT_EQ(failed.failure.rfind("blow-up at t = ", 0), 0u) << failed.failure;
+  EXPECT_EQ(failed.self.proximity_pairs, 0);
+  EXPECT_EQ(failed.self.ccd_passes, 0);
+  EXPECT_TRUE(sim.positions().allFinite());  // the last good state is kept
+}
+
 // A cloth falling at 20 m/s onto a plank 4 mm thick, at a fixed 1/60 s (33 cm a step): every
 // particle's path crosses the plank within one step and ends below it. The continuous collision
 // pass finds the crossing on the path and stops the cloth on top.
