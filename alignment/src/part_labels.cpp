@@ -2,12 +2,25 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
 
 #include "dresskit/mesh/errors.h"
 
 namespace dresskit {
+
+namespace {
+/// A JSON value that must be a whole number within int (JSON numbers may be any size; converting
+/// one beyond int is undefined behaviour).
+int whole_number(const nlohmann::json& v, const std::string& path, const std::string& field) {
+  if (v.is_number_integer()) {
+    const auto wide = v.get<long long>();
+    if (wide >= std::numeric_limits<int>::min() && wide <= std::numeric_limits<int>::max()) return static_cast<int>(wide);
+  }
+  throw InputError(path + ": " + field + ": " + v.dump() + " is not a whole number within range");
+}
+}  // namespace
 
 void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const std::string& key,
                        const std::string& mesh_path) {
@@ -36,7 +49,7 @@ void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const
         throw InputError(labels_path + ": " + std::to_string(ids.size()) + " vertex_labels for a mesh of " +
                          std::to_string(source_count) + " vertices");
       for (int i = 0; i < source_count; ++i) {
-        const int id = ids[static_cast<std::size_t>(i)].get<int>();
+        const int id = whole_number(ids[static_cast<std::size_t>(i)], labels_path, "vertex_labels");
         if (id >= static_cast<int>(names.size()))
           throw InputError(labels_path + ": vertex " + std::to_string(i) + " has part " + std::to_string(id) +
                            " of " + std::to_string(names.size()) + " part_names");
@@ -70,7 +83,7 @@ void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const
       for (const auto& [part, indices] : j.items()) {
         if (!indices.is_array()) continue;
         for (const auto& index : indices) {
-          const int i = index.get<int>();
+          const int i = whole_number(index, labels_path, "part " + part);
           if (i < 0 || i >= source_count)
             throw InputError(labels_path + ": part " + part + " names vertex " + std::to_string(i) +
                              " of a mesh with " + std::to_string(source_count) + " vertices");

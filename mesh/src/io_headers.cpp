@@ -154,8 +154,16 @@ void check_declared_counts(const std::string& path) {
   std::error_code ec;
   const std::uint64_t size = std::filesystem::file_size(path, ec);
   if (ec) return;
-  if (ext == "ply") check_ply(path, size);
-  else if (ext == "off") check_off(path, size);
+  // By extension, and by content too: assimp reads a file its extension's reader refuses with any
+  // reader that recognises the content (a PLY named .glb is read as PLY).
+  char start[16] = {};
+  std::ifstream(path, std::ios::binary).read(start, sizeof start - 1);
+  std::string first(start);
+  first = first.substr(0, first.find_first_of("\r\n"));
+  const std::string word = first.substr(0, first.find(' '));
+  const bool off_magic = word.size() >= 3 && word.size() <= 6 && word.compare(word.size() - 3, 3, "OFF") == 0;
+  if (ext == "ply" || first == "ply") check_ply(path, size);
+  else if (ext == "off" || off_magic) check_off(path, size);
 }
 
 }  // namespace dresskit::detail

@@ -141,8 +141,15 @@ class PositionIndex {
   }
 
  private:
+  // Cells are clamped to ±10⁹ so that a cell and its neighbours stay within int whatever the
+  // coordinates (a mesh far from the origin, or huge ones): far cells then share a boundary cell,
+  // which costs distance checks, not correctness.
   Eigen::Vector3i cell_of(const Eigen::RowVector3d& p) const {
-    return (p / cell_).array().floor().cast<int>().transpose();
+    return (p / cell_)
+        .array()
+        .unaryExpr([](double c) { return std::isfinite(c) ? std::clamp(std::floor(c), -1e9, 1e9) : 0.0; })
+        .cast<int>()
+        .transpose();
   }
   static std::uint64_t key(const Eigen::Vector3i& c) {
     return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(c.x()) * 73856093u) ^

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <numeric>
 #include <random>
 
@@ -15,6 +16,8 @@
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/segmentation/segment.h"
 #include "dresskit/mesh/errors.h"
+#include "dresskit/alignment/part_labels.h"
+#include "dresskit/testing/errors.h"
 #include "mannequin/mannequin_fixture.h"
 #include "test_data.h"
 
@@ -302,4 +305,23 @@ TEST(Placement, NeedsLabelsAndAMatch) {
   PlacementOptions options;
   options.matching = strict;
   EXPECT_THROW(place_garment(far, scene.mannequin, options), InputError);
+}
+
+// Label files whose vertex numbers are not whole numbers within range are refused naming the file
+// (a number beyond int was converted with undefined behaviour: found by fuzzing).
+TEST(PartLabels, RefusesVertexNumbersOutOfRange) {
+  test::TempDir dir;
+  TriangleMesh tetra;
+  tetra.V.resize(4, 3);
+  tetra.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  tetra.F.resize(4, 3);
+  tetra.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  for (const char* text : {R"({"torso": [0, 1], "arm": [2, 3.4e67]})", R"({"torso": [0, 1], "arm": [2, 4294967296]})",
+                           R"({"vertex_labels": [0, 0, 1e300, 0], "part_names": ["a", "b"]})"}) {
+    const std::string path = dir.file("labels.json");
+    std::ofstream(path) << text;
+    TriangleMesh m = tetra;
+    const std::string message = test::input_error_of([&] { apply_part_labels(m, path); });
+    EXPECT_NE(message.find(path), std::string::npos) << text << ": " << message;
+  }
 }

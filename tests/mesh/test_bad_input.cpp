@@ -64,6 +64,12 @@ const BadFile kBadFiles[] = {
     {"negative.off", "OFF\n3 -1 0\n0 0 0\n1 0 0\n0 1 0\n", "is not a whole number"},
     {"mesh.xyz", "1 2 3\n", "unsupported extension"},
     {"garbage.stl", garbage(300), "garbage.stl"},
+    // Read by content whatever the extension: a PLY without its end_header named .glb (found by
+    // fuzzing: assimp's PLY reader looped on it), an OFF declaring 10⁹ vertices named .obj.
+    {"ply_inside.glb", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                       "property float z\nenf\xac\xac" "ement face 2\np",
+     "no 'end_header' line"},
+    {"off_inside.obj", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000000000 vertices"},
 };
 }  // namespace
 

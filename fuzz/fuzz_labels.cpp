@@ -1,0 +1,22 @@
+// Part label files (docs/formats.md) applied to a small mesh: a tetrahedron.
+#include <cstdint>
+
+#include "dresskit/alignment/part_labels.h"
+#include "dresskit/mesh/errors.h"
+#include "fuzz_input.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string path = dresskit::fuzz::write_input("labels.json", data, size);
+  dresskit::TriangleMesh mesh;
+  mesh.V.resize(4, 3);
+  mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
+  mesh.F.resize(4, 3);
+  mesh.F << 0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3;
+  mesh.source_vertex.resize(4);
+  mesh.source_vertex << 0, 1, 2, 3;
+  try {
+    dresskit::apply_part_labels(mesh, path, "mesh", "mesh.obj");
+  } catch (const dresskit::InputError&) {
+  }
+  return 0;
+}
