@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -20,12 +21,13 @@ namespace {
 
 std::vector<unsigned char> unbase64(const std::string& text) {
   std::vector<unsigned char> out;
-  int bits = 0, value = 0;
+  int bits = 0;
+  std::uint32_t value = 0;  // unsigned: the bits shifted out of its top wrap away
   for (char c : text) {
     const char* digits = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     const char* at = std::strchr(digits, c);
     if (c == '=' || !at) break;
-    value = (value << 6) | static_cast<int>(at - digits);
+    value = (value << 6) | static_cast<std::uint32_t>(at - digits);
     bits += 6;
     if (bits >= 8) {
       bits -= 8;
