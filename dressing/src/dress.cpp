@@ -507,11 +507,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       // steps near the body half as long (particles there move at most half a spring's
       // length a step), from its placement with the crossing regions rebuilt where there is one
       // (crossing itself more often, which settling does not undo, but free to settle).
-      bool retried = false;
+      bool rebuilt_any = false;  // a garment now starts from its rebuilt placement
       std::string held;
       if (result.settle.stalled) {
-        retried = true;
-        bool rebuilt_any = false;
         for (std::size_t k = 0; k < result.garments.size(); ++k) {
           DressedGarment& g = result.garments[k];
           if (rebuilt[k].first.rows() == 0 || rebuilt[k].first == g.placed) continue;
@@ -529,7 +527,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       for (std::size_t k = 0; k < result.garments.size(); ++k) {
         DressedGarment& g = result.garments[k];
         g.dressed = sim->positions().middleRows(first[k], first[k + 1] - first[k]);
-        if (retried) g.inside_placed = surface_fit(g.placed, inside).inside;
+        if (rebuilt_any) g.inside_placed = surface_fit(g.placed, inside).inside;
         if (g.waistband_vertices > 0)
           belts += "; waistband of " + g.name + " held (" + std::to_string(g.waistband_vertices) + " vertices)";
       }
