@@ -20,6 +20,10 @@
 #include "dresskit/testing/alignment_shapes.h"
 #include "dresskit/testing/registration_trials.h"
 
+using namespace dresskit::alignment;
+using namespace dresskit::mannequin;
+using namespace dresskit::mesh;
+
 using namespace dresskit;
 
 namespace {

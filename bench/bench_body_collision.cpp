@@ -24,6 +24,8 @@
 #include "dresskit/mesh/io.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 namespace {
 

@@ -27,6 +27,8 @@
 #include "dresskit/cloth/run.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 namespace {
 struct Run {
@@ -56,7 +58,7 @@ Run simulate(const ClothModel& model, const std::vector<int>& pins, SimulationOp
   Run run;
   const std::clock_t c0 = std::clock();
   const auto t0 = std::chrono::steady_clock::now();
-  const RunResult result = dresskit::run(sim, run_options);
+  const RunResult result = dresskit::cloth::run(sim, run_options);
   run.ok = result.ok;
   run.failure = result.failure;
   run.wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

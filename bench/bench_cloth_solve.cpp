@@ -13,6 +13,7 @@
 #include "interleaved_cholesky.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
 
 namespace {
 template <typename Solve>

@@ -22,6 +22,7 @@
 #include "dresskit/cloth/run.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
 
 namespace {
 

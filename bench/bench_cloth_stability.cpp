@@ -18,6 +18,8 @@
 #include "dresskit/cloth/run.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 int main(int argc, char** argv) {
   const std::string csv_path = argc > 1 ? argv[1] : "out/bench/stability_envelope.csv";

@@ -11,6 +11,8 @@
 #include "dresskit/cloth/simulator.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 int main(int argc, char** argv) {
   const int reps = argc > 1 ? std::max(1, std::atoi(argv[1])) : 20;

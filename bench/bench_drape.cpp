@@ -17,7 +17,10 @@
 #include "dresskit/testing/data.h"
 #include "dresskit/testing/drops.h"
 
+using namespace dresskit::cloth;
+
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 std::vector<std::string> split(const std::string& s, char sep) {

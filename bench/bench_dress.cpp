@@ -21,6 +21,9 @@
 #include "dresskit/testing/data.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::dressing;
+using namespace dresskit::mesh;
 
 namespace {
 

@@ -18,6 +18,7 @@
 #include "dresskit/thickness/thickness.h"
 
 using namespace dresskit;
+using namespace dresskit::thickness;
 
 int main(int argc, char** argv) {
   const std::string csv_path = argc > 1 ? argv[1] : "out/bench/heat_error_vs_time.csv";

@@ -14,6 +14,7 @@
 #include "dresskit/mesh/io.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 using bench::cpu_model;
 using bench::median;

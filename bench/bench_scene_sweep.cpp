@@ -11,6 +11,8 @@
 #include "dresskit/mannequin/mannequin.h"
 
 using namespace dresskit;
+using namespace dresskit::mannequin;
+using namespace dresskit::mesh;
 
 int main(int argc, char** argv) {
   const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;

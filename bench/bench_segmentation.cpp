@@ -23,6 +23,8 @@
 #include "dresskit/segmentation/segment.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
+using namespace dresskit::segmentation;
 using bench::median;
 
 namespace {

@@ -5,9 +5,11 @@
 #include "dresskit/mesh/errors.h"
 #include "fuzz_input.h"
 
+using namespace dresskit::alignment;
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string path = dresskit::fuzz::write_input("labels.json", data, size);
-  dresskit::TriangleMesh mesh;
+  dresskit::mesh::TriangleMesh mesh;
   mesh.V.resize(4, 3);
   mesh.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
   mesh.F.resize(4, 3);
@@ -15,7 +17,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   mesh.source_vertex.resize(4);
   mesh.source_vertex << 0, 1, 2, 3;
   try {
-    dresskit::apply_part_labels(mesh, path, "mesh", "mesh.obj");
+    dresskit::alignment::apply_part_labels(mesh, path, "mesh", "mesh.obj");
   } catch (const dresskit::InputError&) {
   }
   return 0;

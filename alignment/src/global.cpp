@@ -9,7 +9,8 @@
 #include "dresskit/alignment/icp.h"
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+
+namespace dresskit::alignment {
 namespace {
 
 struct Frame {
@@ -191,4 +192,4 @@ GlobalResult global_align(const PointSet& source, const PointSet& target,
   return out;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -18,7 +18,7 @@
 #include "dresskit/alignment/icp.h"
 #include "kd_tree.h"
 
-namespace dresskit {
+namespace dresskit::alignment {
 namespace {
 
 using PointT = pcl::PointNormal;
@@ -490,4 +490,4 @@ Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& V, int k) {
   return N;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -14,7 +14,7 @@
 #include <numeric>
 #include <vector>
 
-namespace dresskit::detail {
+namespace dresskit::alignment::detail {
 
 class KdTree3 {
  public:
@@ -170,4 +170,4 @@ class KdTree3 {
   std::vector<Node> nodes_;
 };
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::alignment::detail

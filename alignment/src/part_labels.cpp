@@ -8,7 +8,9 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::alignment {
 
 namespace {
 /// A JSON value that must be a whole number within int (JSON numbers may be any size; converting
@@ -110,4 +112,4 @@ void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path, const
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -9,7 +9,10 @@
 
 #include "dresskit/segmentation/metrics.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+using namespace dresskit::segmentation;
+
+namespace dresskit::alignment {
 
 std::vector<PartDescriptor> describe_parts(const TriangleMesh& mesh) {
   std::vector<PartDescriptor> parts;
@@ -123,4 +126,4 @@ MatchingResult match_parts(const std::vector<PartDescriptor>& garment,
   return out;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

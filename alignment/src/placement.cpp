@@ -12,7 +12,9 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::alignment {
 namespace {
 
 using Junction = std::pair<std::string, std::string>;  // part names, sorted
@@ -435,4 +437,4 @@ PlacementQuality placement_quality(const Eigen::MatrixX3d& posed, const Triangle
   return q;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -9,7 +9,9 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 namespace {
 
 std::uint64_t edge_key(int a, int b) {
@@ -191,4 +193,4 @@ ClothModel build_cloth(const TriangleMesh& mesh, const Fabric& fabric, const Clo
   return model;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -4,7 +4,7 @@
 
 #include "dresskit/cloth/scene.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 std::string cloth_obj_text(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, const SpringSet& springs) {
   std::string out = "# dresskit cloth: metres, +Y up\n";
@@ -29,4 +29,4 @@ std::string cloth_obj_text(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& fa
   return out;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -6,7 +6,9 @@
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 
 namespace {
 Collider collider_of(Collider::Kind kind, const Eigen::Vector3d& point, double friction) {
@@ -114,4 +116,4 @@ double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) co
   return 0.0;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

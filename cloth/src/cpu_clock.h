@@ -4,7 +4,7 @@
 #include <chrono>
 #include <ctime>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 struct ThreadCpuClock {
   using duration = std::chrono::nanoseconds;
@@ -19,4 +19,4 @@ struct ThreadCpuClock {
   }
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

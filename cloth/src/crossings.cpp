@@ -7,7 +7,7 @@
 #include "dresskit/cloth/triangle_bvh.h"
 #include "self_collision_internal.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 namespace {
 
@@ -71,4 +71,4 @@ void SelfCollision::find_tangles(const Eigen::MatrixX3d& x0) {
   });
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

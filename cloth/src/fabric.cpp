@@ -8,7 +8,8 @@
 #include "dresskit/mesh/errors.h"
 #include "fabric_table.h"
 
-namespace dresskit {
+
+namespace dresskit::cloth {
 namespace {
 
 // Orthotropic: the stiffness along θ equals that along −θ and π − θ; fold into [0, π/2].
@@ -150,4 +151,4 @@ std::vector<Fabric> load_fabrics(const std::string& path) {
   return fabrics;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -6,7 +6,7 @@
 // curvature [N m]. Raw values: clamping of negatives and the doubling happen in fabric.cpp.
 #include "fabric_table.h"
 
-namespace dresskit::detail {
+namespace dresskit::cloth::detail {
 
 const std::vector<FabricRecord>& fabric_table() {
   static const std::vector<FabricRecord> table = {
@@ -44,4 +44,4 @@ const std::vector<FabricRecord>& fabric_table() {
   return table;
 }
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::cloth::detail

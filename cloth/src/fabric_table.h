@@ -5,7 +5,7 @@
 #include <utility>
 #include <vector>
 
-namespace dresskit::detail {
+namespace dresskit::cloth::detail {
 
 struct FabricRecord {
   std::string name, common_use;
@@ -17,4 +17,4 @@ struct FabricRecord {
 
 const std::vector<FabricRecord>& fabric_table();
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::cloth::detail

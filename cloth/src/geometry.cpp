@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 Eigen::Vector3d closest_point_on_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
                                           const Eigen::Vector3d& b, const Eigen::Vector3d& c,
@@ -248,4 +248,4 @@ void shift_weighted_difference(Eigen::MatrixX3d& x, const Eigen::VectorXd& inver
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -12,7 +12,7 @@
 #include "simulator_internal.h"
 
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 using detail::add_block;
 using detail::add_spring_blocks;
@@ -45,4 +45,4 @@ void ClothSimulator::step_implicit(StepResult& r) {
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

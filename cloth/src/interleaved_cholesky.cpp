@@ -3,7 +3,7 @@
 #include <Eigen/SparseCholesky>
 #include <algorithm>
 
-namespace dresskit::detail {
+namespace dresskit::cloth::detail {
 
 namespace {
 /// Compressed rows or columns of a strictly lower triangle, `Scalar` values.
@@ -118,4 +118,4 @@ void InterleavedCholesky<Scalar>::solve_in_place(double* b) const {
 template class InterleavedCholesky<float>;
 template class InterleavedCholesky<double>;
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::cloth::detail

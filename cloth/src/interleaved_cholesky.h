@@ -13,7 +13,7 @@
 #include <memory>
 #include <vector>
 
-namespace dresskit::detail {
+namespace dresskit::cloth::detail {
 
 template <typename Scalar>
 class InterleavedCholesky {
@@ -53,4 +53,4 @@ class InterleavedCholesky {
 extern template class InterleavedCholesky<float>;
 extern template class InterleavedCholesky<double>;
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::cloth::detail

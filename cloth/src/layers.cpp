@@ -12,7 +12,9 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 namespace {
 
 void append_spring(SpringSet& s, int i, int j, double rest, double k_rest, double k_knee,
@@ -428,4 +430,4 @@ LayerOrder layer_order(const ClothModel& m, const Eigen::MatrixX3d& x,
   return order;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -13,7 +13,7 @@
 #include "simulator_internal.h"
 
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 using detail::add_block;
 using detail::add_spring_blocks;
@@ -166,4 +166,4 @@ bool ClothSimulator::solve_system(const Eigen::VectorXd& rhs, const Eigen::Vecto
   return true;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -8,7 +8,9 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 
 namespace {
 Eigen::Vector3d vertex(const TriangleMesh& m, int t, int c) { return m.V.row(m.F(t, c)).transpose(); }
@@ -207,4 +209,4 @@ double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward
   return value;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -12,7 +12,7 @@
 #include "simulator_internal.h"
 
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 using detail::add_block;
 using detail::add_spring_blocks;
@@ -92,4 +92,4 @@ void ClothSimulator::step_newton(StepResult& r) {
     if (pinned_[i]) v_.row(i).setZero();
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

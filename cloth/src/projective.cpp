@@ -43,7 +43,9 @@
 #include "projective_internal.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 using namespace pd;
 
 const NameTable<TimeScheme> kTimeSchemes = {{"backward_euler", TimeScheme::backward_euler}, {"bdf2", TimeScheme::bdf2},
@@ -522,4 +524,4 @@ void ClothSimulator::step_projective(StepResult& r) {
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -17,7 +17,7 @@
 #include "interleaved_cholesky.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 namespace pd {
 /// The spring's weight: the law's tangent stiffness just below the knee, k_knee + (5/3)(k_knee −
@@ -245,4 +245,4 @@ struct ClothSimulator::Projective {
   bool ok = false;
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

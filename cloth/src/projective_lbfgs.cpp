@@ -8,7 +8,9 @@
 #include "projective_internal.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 using namespace pd;
 
 // Quasi-Newton (L-BFGS) on the same incremental potential, with the projective matrix as the
@@ -151,4 +153,4 @@ int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
   return iterations;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 void StepTotals::add(const StepResult& r) {
   ++steps;
@@ -100,4 +100,4 @@ RunResult run(ClothSimulator& sim, const RunOptions& o, const std::function<void
   return result;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -14,7 +14,10 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/thickness/thickness.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+using namespace dresskit::thickness;
+
+namespace dresskit::cloth {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -597,4 +600,4 @@ ClothScene load_cloth_scene(const std::string& path) {
   return scene;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

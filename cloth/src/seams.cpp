@@ -8,7 +8,9 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/union_find.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 namespace {
 
 void add_stitch(SeamSet& s, int a, int b0, int b1, double t, StitchLaw law) {
@@ -202,4 +204,4 @@ void weld_seams(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, const 
   for (std::size_t f = 0; f < kept.size(); ++f) F.row(static_cast<Eigen::Index>(f)) = kept[f];
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

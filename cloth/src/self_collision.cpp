@@ -12,7 +12,9 @@
 #include "dresskit/cloth/geometry.h"
 #include "self_collision_internal.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 
 EdgeList triangle_edges(const Eigen::MatrixX3i& F) {
   EdgeList e;
@@ -597,4 +599,4 @@ std::vector<std::array<int, 3>> SelfCollision::listed_pairs() const {
 // edges that each owns against the other (an edge and a triangle sharing a particle excluded). An edge's box lies inside
 // its owner's, so every crossing edge–triangle pair is met once. (A box query per edge took ~7 ms
 // on a 64² cloth, 18 % of a cloth-onto-sphere run that counted at every frame.)
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -3,9 +3,9 @@
 // (crossings.cpp).
 #include <vector>
 
-namespace dresskit::detail {
+namespace dresskit::cloth::detail {
 
 /// Representatives of particles joined as one (seams): the given ones, or each particle its own.
 std::vector<int> representatives(std::vector<int> joined, int particles);
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::cloth::detail

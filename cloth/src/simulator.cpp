@@ -21,7 +21,9 @@
 #include "cpu_clock.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 using detail::add_spring_blocks;
 using detail::row;
 
@@ -552,4 +554,4 @@ StepResult ClothSimulator::step() {
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -9,7 +9,7 @@
 #include "dresskit/cloth/seams.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 using detail::row;
 
 void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool after_contact) {
@@ -143,4 +143,4 @@ void ClothSimulator::keep_layer_order(StepResult& r) {
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

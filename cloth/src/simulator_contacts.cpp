@@ -8,7 +8,7 @@
 #include "dresskit/cloth/geometry.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 using detail::row;
 
 namespace {
@@ -200,4 +200,4 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

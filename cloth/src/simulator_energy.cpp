@@ -9,7 +9,7 @@
 #include "dresskit/cloth/spring_kernels.h"
 #include "simulator_internal.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 using detail::row;
 
 double ClothSimulator::elastic_energy() const {
@@ -138,4 +138,4 @@ SettleResult ClothSimulator::settle(const SettleOptions& o) {
   return result;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -4,7 +4,7 @@
 #include <Eigen/Sparse>
 #include <vector>
 
-namespace dresskit::detail {
+namespace dresskit::cloth::detail {
 
 inline Eigen::Vector3d row(const Eigen::MatrixX3d& m, int i) { return m.row(i).transpose(); }
 
@@ -24,4 +24,4 @@ inline void add_spring_blocks(std::vector<Eigen::Triplet<double>>& t, int i, int
   add_block(t, j, i, -B);
 }
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::cloth::detail

@@ -7,7 +7,9 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::cloth {
 
 const NameTable<Integrator> kIntegrators = {{"symplectic", Integrator::symplectic_euler},
     {"symplectic_euler", Integrator::symplectic_euler}, {"implicit", Integrator::implicit_euler},
@@ -57,4 +59,4 @@ void check_options(const SimulationOptions& o) {
   need(std::isfinite(o.seam_tolerance) && o.seam_tolerance > 0.0, "seam_tolerance: must be positive");
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

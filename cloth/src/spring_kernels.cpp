@@ -2,7 +2,7 @@
 
 #include <Eigen/Geometry>
 
-namespace dresskit {
+namespace dresskit::cloth {
 namespace {
 constexpr double kTiny = 1e-12;  // [m] below this a spring has no direction: no force
 }
@@ -50,4 +50,4 @@ Eigen::Vector3d spring_damping_force(double kd, const Eigen::Vector3d& xi, const
   return -kd * (vi - vj).dot(u) * u;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

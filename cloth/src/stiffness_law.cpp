@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 StiffnessLaw StiffnessLaw::linear(double k) {
   StiffnessLaw law;
@@ -69,4 +69,4 @@ double StiffnessLaw::tension_derivative(double L, double L0) const {
   return dk(e) * e + k(e);
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

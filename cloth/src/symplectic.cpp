@@ -1,7 +1,7 @@
 // Symplectic (semi-implicit) Euler: velocities from the forces, then positions from the velocities.
 #include "dresskit/cloth/simulator.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 void ClothSimulator::step_symplectic(StepResult&) {
   const Eigen::MatrixX3d f = forces();
@@ -12,4 +12,4 @@ void ClothSimulator::step_symplectic(StepResult&) {
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -5,7 +5,7 @@
 
 #include "dresskit/cloth/geometry.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 namespace {
 Eigen::AlignedBox3d triangle_box(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& F, int t) {
@@ -112,4 +112,4 @@ int TriangleBvh::closest(const Eigen::Vector3d& p, Eigen::Vector3d* q, double* d
   return best;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -23,8 +23,14 @@
 #include "dresskit/thickness/thickness.h"
 #include "garments.h"
 
-namespace dresskit {
-using namespace dressing_detail;
+using namespace dresskit::alignment;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+using namespace dresskit::segmentation;
+using namespace dresskit::thickness;
+
+namespace dresskit::dressing {
+using namespace detail;
 
 MeshFile MeshFile::file(std::string path, LoadOptions load, std::string labels) {
   MeshFile f;
@@ -555,4 +561,4 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   return result;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::dressing

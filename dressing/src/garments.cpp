@@ -9,7 +9,10 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
 
-namespace dresskit::dressing_detail {
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+
+namespace dresskit::dressing::detail {
 namespace {
 
 /// Weight of a vertex held at a position in an as-rigid-as-possible fit (arap_fit): moving it one
@@ -218,4 +221,4 @@ std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest
   return belt;
 }
 
-}  // namespace dresskit::dressing_detail
+}  // namespace dresskit::dressing::detail

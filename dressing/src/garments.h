@@ -7,14 +7,14 @@
 #include "dresskit/dressing/dress.h"
 #include "dresskit/mesh/inside.h"
 
-namespace dresskit::dressing_detail {
+namespace dresskit::dressing::detail {
 
 /// The garment's rest shape for settling: as made, graded by the placement's size change.
-TriangleMesh rest_shape(const DressedGarment& g);
+mesh::TriangleMesh rest_shape(const DressedGarment& g);
 
 /// Rebuilds the regions where the placed garment k crosses itself more often than as authored
 /// (garments.cpp); updates its placed positions and crossings_placed.
-void untangle(std::vector<DressedGarment>& garments, std::size_t k, const MeshDistance& body, double clearance);
+void untangle(std::vector<DressedGarment>& garments, std::size_t k, const cloth::MeshDistance& body, double clearance);
 
 /// Where garment k still crosses itself more often than as authored: moves it onto its placed
 /// positions from a shape crossing itself as authored, its parts kept apart on the way
@@ -33,6 +33,6 @@ bool is_top(const DressedGarment& g);
 
 /// The rows of the waistband of each bottom among a garment's pieces (garments.cpp).
 std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
-                           const InsideTest& inside);
+                           const mesh::InsideTest& inside);
 
-}  // namespace dresskit::dressing_detail
+}  // namespace dresskit::dressing::detail

@@ -10,7 +10,11 @@
 #include "dresskit/report/page.h"
 #include "report_page.h"
 
-namespace dresskit {
+using namespace dresskit::alignment;
+using namespace dresskit::mesh;
+using namespace dresskit::report;
+
+namespace dresskit::dressing {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
@@ -179,7 +183,7 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
   // The page's meshes and colour maps are made before the write stage's time is taken; its text,
   // which holds report.json's, after.
   ReportPage page;
-  if (options.page) page = dressing_detail::dress_page(r, options.command, "");
+  if (options.page) page = detail::dress_page(r, options.command, "");
   json stages = stages_json(r);
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stages.push_back({{"name", "write"}, {"ran", true}, {"seconds", seconds},
@@ -199,7 +203,7 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
 void write_dress_failure_page(const std::string& folder, const DressResult& r, const DressOutputOptions& options) {
   const std::string failure = "settling stopped after " + std::to_string(r.settle.totals.steps) +
                               " steps: " + (r.settle.failure.empty() ? r.settle.stopped_reason : r.settle.failure);
-  ReportPage page = dressing_detail::dress_page(r, options.command, failure);
+  ReportPage page = detail::dress_page(r, options.command, failure);
   json report = report_with_extra(r, options);
   report["stages"] = stages_json(r);
   report["seconds"] = r.seconds;
@@ -208,4 +212,4 @@ void write_dress_failure_page(const std::string& folder, const DressResult& r, c
   write_report_html((fs::path(folder) / "report.html").string(), page);
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::dressing

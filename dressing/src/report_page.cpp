@@ -6,7 +6,13 @@
 #include "dresskit/mesh/inside.h"
 #include "garments.h"
 
-namespace dresskit::dressing_detail {
+using namespace dresskit::cloth;
+using namespace dresskit::report;
+
+using namespace dresskit::alignment;
+using namespace dresskit::mesh;
+
+namespace dresskit::dressing::detail {
 namespace {
 
 /// Colour map ranges: distance to the body from 5 mm inside (red) to 2 cm off it (blue); strain
@@ -199,4 +205,4 @@ ReportPage dress_page(const DressResult& r, const std::string& command,
   return page;
 }
 
-}  // namespace dresskit::dressing_detail
+}  // namespace dresskit::dressing::detail

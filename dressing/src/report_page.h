@@ -7,12 +7,12 @@
 #include "dresskit/dressing/dress.h"
 #include "dresskit/report/page.h"
 
-namespace dresskit::dressing_detail {
+namespace dresskit::dressing::detail {
 
 /// The page of a dressing run without its report.json text (set page.report_json once it is made).
 /// `command` names the command ("dress", "demo"); `failure` is "" for a run that succeeded, else
 /// what failed (the garments are then shown at the last good state settling reached).
-ReportPage dress_page(const DressResult& result, const std::string& command,
+report::ReportPage dress_page(const DressResult& result, const std::string& command,
                       const std::string& failure);
 
-}  // namespace dresskit::dressing_detail
+}  // namespace dresskit::dressing::detail

@@ -8,7 +8,9 @@
 #include "dresskit/mesh/topology.h"
 #include "mesh_field.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::mannequin {
 
 const std::vector<GarmentKind>& all_garment_kinds() {
   static const std::vector<GarmentKind> kinds = {GarmentKind::tshirt, GarmentKind::skirt,
@@ -161,4 +163,4 @@ TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const Garment
   return mesh;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <limits>
 
-namespace dresskit {
+namespace dresskit::mannequin {
 
 Primitive Primitive::ellipsoid(const Eigen::Vector3d& centre, const Eigen::Vector3d& radii, int part,
                                std::string name) {
@@ -99,4 +99,4 @@ Eigen::AlignedBox3d ImplicitUnion::bounds(double pad) const {
   return box;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

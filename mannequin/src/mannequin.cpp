@@ -10,7 +10,9 @@
 #include "dresskit/mesh/topology.h"
 #include "mesh_field.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::mannequin {
 
 const std::vector<std::string>& body_part_names() {
   static const std::vector<std::string> names = {"torso",   "head_neck", "arm_left",
@@ -116,4 +118,4 @@ TriangleMesh make_mannequin(const BodyShape& body) {
   return mesh;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

@@ -5,7 +5,9 @@
 #include "dresskit/mesh/cleanup.h"
 #include "dresskit/mesh/isosurface.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::mannequin {
 
 TriangleMesh mesh_implicit(const ImplicitUnion& shape, double edge, double max_spacing,
                            const std::function<double(const Eigen::Vector3d&)>& cut) {
@@ -30,4 +32,4 @@ TriangleMesh mesh_implicit(const ImplicitUnion& shape, double edge, double max_s
   return mesh;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

@@ -10,7 +10,7 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 Eigen::MatrixX3d arap_fit(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& target,
                           const Eigen::VectorXd& weights, const ArapOptions& options) {
@@ -106,4 +106,4 @@ Eigen::MatrixX3d arap_fit(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& 
   return x;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

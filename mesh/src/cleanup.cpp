@@ -33,7 +33,7 @@
 #include "dresskit/mesh/topology.h"
 #include "internal.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 namespace {
 
 namespace PMP = CGAL::Polygon_mesh_processing;
@@ -356,4 +356,4 @@ CleanupResult cleanup_mesh(const TriangleMesh& input, const CleanupOptions& opti
   return r;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

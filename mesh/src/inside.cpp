@@ -11,7 +11,7 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 namespace {
 using Kernel = CGAL::Simple_cartesian<double>;
 using Point = Kernel::Point_3;
@@ -71,4 +71,4 @@ int InsideTest::count_deeper(const Eigen::MatrixX3d& points, double depth, doubl
   return count;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -6,7 +6,7 @@
 #include <filesystem>
 #include <string>
 
-namespace dresskit::detail {
+namespace dresskit::mesh::detail {
 
 inline std::string lower_extension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
@@ -28,4 +28,4 @@ inline std::array<int, 3> directed_triangle_key(int a, int b, int c) {
   return {a, b, c};
 }
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::mesh::detail

@@ -13,7 +13,7 @@
 #include "dresskit/mesh/errors.h"
 #include "internal.h"
 
-namespace dresskit::detail {
+namespace dresskit::mesh::detail {
 namespace {
 
 /// Bytes of one value of a PLY scalar type; 0 for an unknown type.
@@ -166,4 +166,4 @@ void check_declared_counts(const std::string& path) {
   else if (ext == "off" || off_magic) check_off(path, size);
 }
 
-}  // namespace dresskit::detail
+}  // namespace dresskit::mesh::detail

@@ -20,7 +20,7 @@
 #include "dresskit/mesh/io.h"
 #include "internal.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 namespace fs = std::filesystem;
 
 Units Units::parse(const std::string& text) {
@@ -300,4 +300,4 @@ TriangleMesh load_mesh(const std::string& path, const LoadOptions& options) {
   return mesh;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -18,7 +18,7 @@
 #include "dresskit/mesh/io.h"
 #include "internal.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 namespace fs = std::filesystem;
 
 const std::vector<std::string>& saveable_extensions() {
@@ -297,4 +297,4 @@ void write_file_atomically(const std::string& path, const std::string& contents)
   write_via_temporary(path, [&](const std::string& tmp) { write_bytes(tmp, contents); });
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

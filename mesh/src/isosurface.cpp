@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <unordered_map>
 
-namespace dresskit {
+namespace dresskit::mesh {
 namespace {
 
 // The six tetrahedra of a cube around its main diagonal 0–7 (corner c = i + 2j + 4k). Every face of
@@ -216,4 +216,4 @@ double project_to_zero_set(const ScalarField& field, Eigen::MatrixX3d& V, int it
   return worst;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -7,7 +7,7 @@
 #include <numeric>
 #include <unordered_map>
 
-namespace dresskit {
+namespace dresskit::mesh {
 namespace {
 
 std::uint64_t edge_key(int a, int b) {
@@ -202,4 +202,4 @@ std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& F, int n
   return out;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -4,7 +4,7 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 Eigen::AlignedBox3d bounding_box(const TriangleMesh& mesh) {
   Eigen::AlignedBox3d box;
@@ -154,4 +154,4 @@ void append_mesh(TriangleMesh& a, const TriangleMesh& b, const std::string& labe
   a.source_vertex.resize(0);
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

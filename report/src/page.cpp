@@ -13,11 +13,13 @@
 #include "page_template.h"
 #include "sections.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::report {
 using json = nlohmann::json;
 namespace {
 
-using report_detail::escape_html;
+using detail::escape_html;
 
 std::string base64(const void* data, std::size_t size) {
   static const char* const digits =
@@ -194,7 +196,7 @@ std::string content_html(const ReportPage& page) {
     for (const std::string& note : page.notes) out += "<li>" + escape_html(note) + "</li>\n";
     out += "</ul>\n";
   }
-  for (const ReportSection& s : page.sections) out += report_detail::section_html(s);
+  for (const ReportSection& s : page.sections) out += detail::section_html(s);
   if (!page.report_json.empty()) {
     out +=
         "<section>\n<h2>report.json</h2>\n<details><summary>The run's report as "
@@ -232,7 +234,7 @@ std::string report_html(const ReportPage& page) {
                                ? ""
                                : "<script type=\"application/json\" id=\"dresskit-data\">" +
                                      data_json(page) + "</script>";
-  return fill(report_detail::page_template(), {{"<!--title-->", escape_html(page.title)},
+  return fill(detail::page_template(), {{"<!--title-->", escape_html(page.title)},
                                                {"<!--content-->", content_html(page)},
                                                {"<!--data-->", data}});
 }
@@ -255,4 +257,4 @@ Eigen::VectorXd vertex_strain(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d&
   return s;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::report

@@ -4,8 +4,8 @@
 // <!--content--> and <!--data--> are filled in for each page (page.cpp).
 #include <string>
 
-namespace dresskit::report_detail {
+namespace dresskit::report::detail {
 
 const std::string& page_template();
 
-}  // namespace dresskit::report_detail
+}  // namespace dresskit::report::detail

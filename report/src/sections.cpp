@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-namespace dresskit {
+namespace dresskit::report {
 
 std::string report_number(double value, int digits) {
   if (!std::isfinite(value)) return "–";
@@ -64,9 +64,9 @@ ReportSection ReportSection::text_of(std::string title, std::string text) {
   return section(Kind::text, std::move(title), std::move(text));
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::report
 
-namespace dresskit::report_detail {
+namespace dresskit::report::detail {
 namespace {
 
 std::string format(const char* pattern, double a, double b = 0.0, double c = 0.0, double d = 0.0) {
@@ -217,4 +217,4 @@ std::string section_html(const ReportSection& s) {
   return out + "</section>\n";
 }
 
-}  // namespace dresskit::report_detail
+}  // namespace dresskit::report::detail

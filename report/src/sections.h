@@ -5,7 +5,7 @@
 
 #include "dresskit/report/page.h"
 
-namespace dresskit::report_detail {
+namespace dresskit::report::detail {
 
 /// Text with &, <, >, " and ' escaped for HTML text and attribute values.
 std::string escape_html(const std::string& text);
@@ -13,4 +13,4 @@ std::string escape_html(const std::string& text);
 /// One section as HTML: <section><h2>…</h2> and its table, SVG or paragraph.
 std::string section_html(const ReportSection& section);
 
-}  // namespace dresskit::report_detail
+}  // namespace dresskit::report::detail

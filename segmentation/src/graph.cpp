@@ -11,7 +11,9 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::segmentation {
 
 const NameTable<AffinityKind> kAffinities = {{"dihedral", AffinityKind::dihedral},
     {"edge-length", AffinityKind::edge_length}, {"edge_length", AffinityKind::edge_length},
@@ -237,4 +239,4 @@ Eigen::VectorXd vertex_areas(const Eigen::MatrixX3d& V, const Eigen::MatrixX3i& 
   return area;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -4,7 +4,7 @@
 #include <limits>
 #include <random>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 namespace {
 
 // k-means++ seeding: each next centre drawn with probability ∝ squared distance to the nearest one.
@@ -86,4 +86,4 @@ KMeansResult kmeans(const Eigen::MatrixXd& X, int k, const KMeansOptions& option
   return best;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

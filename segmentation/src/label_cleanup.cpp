@@ -10,7 +10,7 @@
 #include <queue>
 #include <unordered_map>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 int merge_orphan_patches(const MeshGraph& graph, const Adjacency& adj,
                          const Eigen::VectorXd& vertex_area, Eigen::VectorXi& labels) {
@@ -558,4 +558,4 @@ std::vector<int> mirror_vertices(const Eigen::MatrixX3d& V, const Eigen::VectorX
   return mirror;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <limits>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 std::vector<int> max_weight_matching(const Eigen::MatrixXd& score) {
   // Hungarian method (potentials, O(n³)) on the square cost matrix −score padded with zeros.
@@ -112,4 +112,4 @@ LabelComparison compare_labels(const Eigen::VectorXi& predicted, const Eigen::Ve
   return out;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

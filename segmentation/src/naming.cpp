@@ -7,7 +7,7 @@
 #include <map>
 #include <numeric>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 AxesEstimate estimate_axes(const Eigen::MatrixX3d& V, const Eigen::VectorXd& area,
                            const Eigen::Vector3d& up_given, const Eigen::Vector3d& forward_given) {
@@ -246,4 +246,4 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
   return parts;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -14,7 +14,9 @@
 #include "dresskit/segmentation/naming.h"
 #include "dresskit/segmentation/skirt.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::segmentation {
 
 std::vector<std::string> SegmentationResult::part_names() const {
   std::vector<std::string> names;
@@ -478,4 +480,4 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
   return r;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

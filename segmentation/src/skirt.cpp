@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 SkirtFrame detect_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V,
                         const Eigen::VectorXd& area, const std::vector<int>& vertices,
@@ -126,4 +126,4 @@ void split_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V, const Eigen:
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

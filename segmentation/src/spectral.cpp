@@ -12,7 +12,8 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+
+namespace dresskit::segmentation {
 
 const NameTable<LaplacianKind> kLaplacians = {{"normalized", LaplacianKind::normalized},
     {"normalised", LaplacianKind::normalized}, {"plain", LaplacianKind::plain}};
@@ -118,4 +119,4 @@ EigenResult smallest_eigenpairs(const Eigen::SparseMatrix<double>& L, int nev,
   return sorted;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

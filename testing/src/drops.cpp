@@ -13,6 +13,9 @@
 #include "dresskit/mesh/inside.h"
 #include "dresskit/testing/data.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+
 namespace dresskit::testing {
 
 std::vector<DropCase> drop_cases(int resolution) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numeric>
 
+using namespace dresskit::alignment;
+
 namespace dresskit {
 
 Trial make_trial(const PointSet& clean, const TrialOptions& options, std::mt19937& rng) {

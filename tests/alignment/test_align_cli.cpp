@@ -11,6 +11,8 @@
 #include "tools/cli_run.h"
 
 using namespace dresskit;
+using namespace dresskit::alignment;
+using namespace dresskit::mesh;
 using namespace dresskit::test::cli;
 
 TEST(AlignCli, RigidRecoversAKnownTransformAcrossUnits) {

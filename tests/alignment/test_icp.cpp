@@ -11,7 +11,11 @@
 #include "dresskit/mesh/errors.h"
 #include "test_data.h"
 
+using namespace dresskit::alignment;
+using namespace dresskit::mannequin;
+
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 

@@ -21,7 +21,13 @@
 #include "mannequin/mannequin_fixture.h"
 #include "test_data.h"
 
+using namespace dresskit::mannequin;
+
 using namespace dresskit;
+using namespace dresskit::alignment;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+using namespace dresskit::segmentation;
 
 TEST(Matching, OptimalAssignmentMatchesBruteForce) {
   std::mt19937 rng(11);

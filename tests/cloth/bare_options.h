@@ -6,8 +6,8 @@
 
 namespace dresskit::test {
 
-inline SimulationOptions bare_options(Integrator integrator) {
-  SimulationOptions o;
+inline cloth::SimulationOptions bare_options(cloth::Integrator integrator) {
+  cloth::SimulationOptions o;
   o.integrator = integrator;
   o.dt = 1.0 / 240.0;
   o.adaptive = false;

@@ -10,12 +10,12 @@
 
 namespace dresskit::test {
 
-inline TriangleMesh sphere_mesh(const Eigen::Vector3d& centre, double radius, double spacing) {
-  const ScalarField f = [&](const Eigen::MatrixX3d& P, Eigen::VectorXd& v) {
+inline mesh::TriangleMesh sphere_mesh(const Eigen::Vector3d& centre, double radius, double spacing) {
+  const mesh::ScalarField f = [&](const Eigen::MatrixX3d& P, Eigen::VectorXd& v) {
     v = (P.rowwise() - centre.transpose()).rowwise().norm().array() - radius;
   };
   const Eigen::AlignedBox3d box(centre.array() - 1.3 * radius, centre.array() + 1.3 * radius);
-  return marching_tetrahedra(f, box, spacing);
+  return mesh::marching_tetrahedra(f, box, spacing);
 }
 
 }  // namespace dresskit::test

@@ -11,6 +11,9 @@
 #include "dresskit/cloth/self_collision.h"
 #include "test_data.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+
 namespace dresskit {
 namespace {
 

@@ -5,6 +5,8 @@
 #include "dresskit/mesh/topology.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 namespace {
 Fabric test_fabric() {

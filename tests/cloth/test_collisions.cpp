@@ -6,6 +6,8 @@
 #include "dresskit/mesh/errors.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 namespace {
 ClothModel single_particle(double mass) {

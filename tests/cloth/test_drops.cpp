@@ -10,6 +10,8 @@
 #include "dresskit/testing/drops.h"
 #include "test_data.h"
 
+using namespace dresskit::cloth;
+
 namespace dresskit {
 namespace {
 

@@ -8,6 +8,7 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
 
 TEST(Fabric, TenBuiltInFabricsByName) {
   const auto names = fabric_names();

@@ -14,6 +14,9 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+using namespace dresskit::thickness;
 
 namespace {
 ClothModel grid_cloth(int n, double height, const char* fabric = "gray-interlock") {

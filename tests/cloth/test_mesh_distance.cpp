@@ -13,6 +13,9 @@
 #include "dresskit/mesh/io.h"
 #include "test_data.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+
 namespace dresskit {
 namespace {
 

@@ -15,6 +15,7 @@
 #include "interleaved_cholesky.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
 
 namespace {
 // The projective-dynamics-like matrix of a cloth: masses / h² on the diagonal plus a weighted

@@ -8,6 +8,8 @@
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/run.h"
 
+using namespace dresskit::cloth;
+
 namespace dresskit {
 namespace {
 

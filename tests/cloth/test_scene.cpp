@@ -7,6 +7,8 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 namespace {
 std::string write(const test::TempDir& dir, const std::string& text) {

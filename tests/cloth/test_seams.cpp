@@ -10,6 +10,8 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/testing/errors.h"
 
+using namespace dresskit::cloth;
+
 namespace dresskit {
 namespace {
 

@@ -14,6 +14,9 @@
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/simulator.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+
 namespace dresskit {
 namespace {
 

@@ -9,6 +9,8 @@
 #include "dresskit/mesh/errors.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
 
 namespace {
 // A vertical chain: particle 0 at the top (pinned), springs k from k0 at rest to k_knee at the knee.

@@ -8,6 +8,7 @@
 #include "dresskit/cloth/stiffness_law.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
 
 namespace {
 const StiffnessLaw kLaw = StiffnessLaw::fitted(100.0, 400.0, kKneeStrain);

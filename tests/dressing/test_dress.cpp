@@ -20,6 +20,10 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::cloth;
+using namespace dresskit::dressing;
+using namespace dresskit::mannequin;
+using namespace dresskit::mesh;
 
 namespace {
 

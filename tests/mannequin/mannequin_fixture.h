@@ -7,10 +7,10 @@
 namespace dresskit::test {
 
 struct DefaultScene {
-  BodyShape body;
-  TriangleMesh mannequin;
-  std::vector<TriangleMesh> garments;  // in all_garment_kinds() order
-  GarmentOptions garment_options;
+  mannequin::BodyShape body;
+  mesh::TriangleMesh mannequin;
+  std::vector<mesh::TriangleMesh> garments;  // in mannequin::all_garment_kinds() order
+  mannequin::GarmentOptions garment_options;
 
   static const DefaultScene& get() {
     static const DefaultScene scene;
@@ -18,8 +18,8 @@ struct DefaultScene {
   }
 
  private:
-  DefaultScene() : body(MannequinOptions{}), mannequin(make_mannequin(body)) {
-    for (GarmentKind kind : all_garment_kinds()) garments.push_back(make_garment(body, kind, garment_options));
+  DefaultScene() : body(mannequin::MannequinOptions{}), mannequin(make_mannequin(body)) {
+    for (mannequin::GarmentKind kind : mannequin::all_garment_kinds()) garments.push_back(make_garment(body, kind, garment_options));
   }
 };
 

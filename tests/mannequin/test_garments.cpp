@@ -6,7 +6,10 @@
 #include "dresskit/mesh/topology.h"
 #include "mannequin_fixture.h"
 
+using namespace dresskit::mannequin;
+
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 class Garment : public ::testing::TestWithParam<GarmentKind> {
  protected:

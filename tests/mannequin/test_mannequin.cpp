@@ -5,7 +5,10 @@
 #include "dresskit/testing/expect.h"
 #include "mannequin_fixture.h"
 
+using namespace dresskit::mannequin;
+
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 TEST(Mannequin, ClosedManifoldOutwardOneComponent) {
   const TriangleMesh& m = test::DefaultScene::get().mannequin;

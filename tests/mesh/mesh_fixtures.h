@@ -5,8 +5,8 @@
 namespace dresskit::fixtures {
 
 /// Unit right tetrahedron (0,0,0), (1,0,0), (0,1,0), (0,0,1), outward.
-inline TriangleMesh tetrahedron() {
-  TriangleMesh m;
+inline mesh::TriangleMesh tetrahedron() {
+  mesh::TriangleMesh m;
   m.V.resize(4, 3);
   m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1;
   m.F.resize(4, 3);
@@ -15,8 +15,8 @@ inline TriangleMesh tetrahedron() {
 }
 
 /// Axis-aligned cube of side s centred at the origin, as 6 quads (12 triangles), outward.
-inline TriangleMesh cube(double s) {
-  TriangleMesh m;
+inline mesh::TriangleMesh cube(double s) {
+  mesh::TriangleMesh m;
   m.V.resize(8, 3);
   for (int i = 0; i < 8; ++i) m.V.row(i) << (i & 1 ? 0.5 : -0.5) * s, (i & 2 ? 0.5 : -0.5) * s, (i & 4 ? 0.5 : -0.5) * s;
   m.quads.resize(6, 4);
@@ -30,8 +30,8 @@ inline TriangleMesh cube(double s) {
 }
 
 /// An nx × ny grid of unit-square cells of size h in the XY plane, two triangles per cell.
-inline TriangleMesh grid(int nx, int ny, double h) {
-  TriangleMesh m;
+inline mesh::TriangleMesh grid(int nx, int ny, double h) {
+  mesh::TriangleMesh m;
   m.V.resize((nx + 1) * (ny + 1), 3);
   for (int j = 0; j <= ny; ++j)
     for (int i = 0; i <= nx; ++i) m.V.row(j * (nx + 1) + i) << i * h, j * h, 0.0;
@@ -47,8 +47,8 @@ inline TriangleMesh grid(int nx, int ny, double h) {
 }
 
 /// Two tetrahedra that share one vertex (index 0): a non-manifold vertex.
-inline TriangleMesh bowtie_tetrahedra() {
-  TriangleMesh m;
+inline mesh::TriangleMesh bowtie_tetrahedra() {
+  mesh::TriangleMesh m;
   m.V.resize(7, 3);
   m.V << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1;
   m.F.resize(8, 3);

@@ -10,6 +10,7 @@
 #include "mesh_fixtures.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 double largest_edge_strain(const Eigen::MatrixX3d& x, const TriangleMesh& rest) {

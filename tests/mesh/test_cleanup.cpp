@@ -11,6 +11,7 @@
 #include "mesh_fixtures.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 // The cube as a triangle soup: every triangle has its own three vertices.

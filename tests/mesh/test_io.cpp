@@ -11,6 +11,7 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 void write_text(const std::string& path, const std::string& text) {

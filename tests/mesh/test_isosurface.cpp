@@ -5,6 +5,7 @@
 #include "mesh_fixtures.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 ScalarField sphere(double r, Eigen::Vector3d c = Eigen::Vector3d::Zero()) {

@@ -12,6 +12,7 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 namespace {
 // An independent reading of an OBJ's `v` and `f` lines (fan-triangulated, 0-based).

@@ -7,6 +7,7 @@
 #include "mesh_fixtures.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 
 TEST(Topology, TetrahedronIsClosedOutwardWithKnownVolume) {
   const TriangleMesh m = fixtures::tetrahedron();

@@ -15,6 +15,7 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::report;
 using json = nlohmann::json;
 
 namespace {

@@ -17,6 +17,8 @@
 #include "tools/cli_run.h"
 
 using namespace dresskit;
+using namespace dresskit::dressing;
+using namespace dresskit::mesh;
 namespace browser = dresskit::test::browser;
 
 namespace {

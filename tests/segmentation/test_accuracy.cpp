@@ -17,6 +17,8 @@
 #include "test_data.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
+using namespace dresskit::segmentation;
 
 namespace {
 

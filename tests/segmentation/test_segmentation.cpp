@@ -16,7 +16,11 @@
 #include "dresskit/segmentation/skirt.h"
 #include "dresskit/segmentation/spectral.h"
 
+using namespace dresskit::mannequin;
+
 using namespace dresskit;
+using namespace dresskit::mesh;
+using namespace dresskit::segmentation;
 
 namespace {
 

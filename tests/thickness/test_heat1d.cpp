@@ -9,6 +9,8 @@
 #include "dresskit/testing/errors.h"
 #include "dresskit/thickness/heat1d.h"
 
+using namespace dresskit::thickness;
+
 namespace dresskit {
 namespace {
 

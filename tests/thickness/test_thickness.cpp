@@ -10,6 +10,8 @@
 #include "dresskit/thickness/thickness.h"
 #include "test_data.h"
 
+using namespace dresskit::thickness;
+
 namespace dresskit {
 namespace {
 

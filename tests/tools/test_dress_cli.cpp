@@ -10,6 +10,7 @@
 #include "tools/cli_run.h"
 
 using namespace dresskit;
+using namespace dresskit::mesh;
 using namespace dresskit::test::cli;
 
 namespace {

@@ -6,7 +6,8 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/names.h"
 
-namespace dresskit {
+
+namespace dresskit::thickness {
 namespace {
 
 // Sources, abbreviated (full references and the reasoning behind each choice: docs/thickness.md):
@@ -126,4 +127,4 @@ FabricThermal fabric_thermal(const Composition& composition, double solidity) {
   return t;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness

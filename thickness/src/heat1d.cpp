@@ -7,7 +7,8 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+
+namespace dresskit::thickness {
 namespace {
 
 void require_positive(double value, const char* field) {
@@ -176,4 +177,4 @@ double crossing_depth(const Eigen::VectorXd& x, const Eigen::VectorXd& T, double
   return -1.0;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness

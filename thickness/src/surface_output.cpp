@@ -11,7 +11,9 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/thickness/thickness.h"
 
-namespace dresskit {
+using namespace dresskit::mesh;
+
+namespace dresskit::thickness {
 namespace {
 
 /// Blue (cold) through light grey to red (warm), Moreland's "cool to warm" end and middle points.
@@ -117,4 +119,4 @@ void write_temperature_surface(const std::string& dir, const ThicknessResult& r,
   }
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness

@@ -6,7 +6,8 @@
 
 #include "dresskit/mesh/errors.h"
 
-namespace dresskit {
+
+namespace dresskit::thickness {
 namespace {
 
 /// erfc⁻¹(y) for 0 < y < 1 by bisection on the monotone erfc over [0, 10]: 80 halvings reach
@@ -100,4 +101,4 @@ DownFill down_fill(const std::vector<double>& areas, double thickness, const Fab
   return fill;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness

@@ -11,6 +11,9 @@
 #include "common/output_folder.h"
 #include "dresskit/mesh/io.h"
 
+using namespace dresskit::alignment;
+using namespace dresskit::mesh;
+
 namespace dresskit::cli {
 namespace {
 

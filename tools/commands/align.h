@@ -14,8 +14,8 @@ struct AlignCommand : Command {
   std::string garment_labels, body_labels, garment_labels_key, body_labels_key, reference;
   bool rigid = false, with_scale = false, local = false, part_scale = false;
   double min_fitness = 0.5;
-  GlobalOptions global;
-  PlacementOptions placement;
+  alignment::GlobalOptions global;
+  alignment::PlacementOptions placement;
 
   void add_to(CLI::App& app) override;
   /// Aligns and writes DIR/result.json with DIR/aligned.obj (--rigid) or DIR/posed.obj; returns the

@@ -7,6 +7,8 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/mesh/topology.h"
 
+using namespace dresskit::mesh;
+
 namespace dresskit::cli {
 namespace fs = std::filesystem;
 using json = nlohmann::json;

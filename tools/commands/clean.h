@@ -11,7 +11,7 @@ namespace dresskit::cli {
 struct CleanCommand : Command {
   MeshArgument mesh;
   std::string output;
-  CleanupOptions options;
+  mesh::CleanupOptions options;
   bool as_json = false;
 
   void add_to(CLI::App& app) override;

@@ -12,6 +12,10 @@
 #include "common/mesh.h"
 #include "common/output_folder.h"
 
+using namespace dresskit::dressing;
+using namespace dresskit::mannequin;
+using namespace dresskit::mesh;
+
 namespace dresskit::cli {
 namespace fs = std::filesystem;
 using json = nlohmann::json;

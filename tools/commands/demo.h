@@ -12,8 +12,8 @@ namespace dresskit::cli {
 
 struct DemoCommand : Command {
   std::string dir, pose = "a-pose", quality = "fast";
-  MannequinOptions body;
-  GarmentOptions garments;
+  mannequin::MannequinOptions body;
+  mannequin::GarmentOptions garments;
   double seconds = 0.0;      ///< simulated settling at most [s]; 0: the quality's
   bool no_settle = false;
   double over_ease = 0.008;  ///< the t-shirt's ease beyond the trousers', so that they start apart [m]

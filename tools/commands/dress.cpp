@@ -14,6 +14,9 @@
 #include "common/output_folder.h"
 #include "common/progress.h"
 
+using namespace dresskit::dressing;
+using namespace dresskit::mesh;
+
 namespace dresskit::cli {
 namespace fs = std::filesystem;
 using json = nlohmann::json;

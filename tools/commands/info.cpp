@@ -4,6 +4,8 @@
 
 #include "dresskit/mesh/io.h"
 
+using namespace dresskit::mesh;
+
 namespace dresskit::cli {
 using json = nlohmann::json;
 

@@ -13,6 +13,11 @@
 #include "common/output_folder.h"
 #include "common/pages.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+using namespace dresskit::report;
+using namespace dresskit::segmentation;
+
 namespace dresskit::cli {
 namespace {
 

@@ -14,7 +14,7 @@ struct SegmentCommand : Command {
                     laplacian = "normalized";
   int parts = -1;  // -1: not given (automatic)
   bool as_json = false;
-  SegmentationOptions options;
+  segmentation::SegmentationOptions options;
 
   void add_to(CLI::App& app) override;
   /// Writes DIR/labels.json, DIR/segments.ply and DIR/<part>.obj, prints a summary; returns the

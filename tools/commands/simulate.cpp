@@ -19,6 +19,10 @@
 #include "common/pages.h"
 #include "common/progress.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+using namespace dresskit::report;
+
 namespace dresskit::cli {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
@@ -110,7 +114,7 @@ int SimulateCommand::simulate_into(const ClothScene& s, const fs::path& out) con
   const Eigen::MatrixX3d start = sim.positions();
   Progress progress("simulate", s.run.duration, "s simulated");
   const auto t0 = Clock::now();
-  const RunResult result = dresskit::run(
+  const RunResult result = dresskit::cloth::run(
       sim, s.run,
       [&](int k) {
         energy.push_back(sim.elastic_energy());

@@ -21,7 +21,7 @@ struct SimulateCommand : Command {
 
  private:
   /// The run, its outputs written into `out`; returns the exit code.
-  int simulate_into(const ClothScene& s, const std::filesystem::path& out) const;
+  int simulate_into(const cloth::ClothScene& s, const std::filesystem::path& out) const;
 };
 
 }  // namespace dresskit::cli

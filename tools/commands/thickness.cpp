@@ -12,6 +12,9 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/names.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::thickness;
+
 namespace dresskit::cli {
 namespace {
 

@@ -12,7 +12,7 @@ namespace dresskit::cli {
 struct ThicknessCommand : Command {
   std::string fabric, fabric_file, composition, plot_dir, scheme = "crank-nicolson", panel_areas;
   bool all_fabrics = false, as_json = false;
-  ThicknessOptions options;
+  thickness::ThicknessOptions options;
 
   void add_to(CLI::App& app) override;
   /// Prints the thickness (or the ten fabrics' table) and writes the plot; returns the exit code.

@@ -3,6 +3,8 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/mesh/topology.h"
 
+using namespace dresskit::mesh;
+
 namespace dresskit::cli {
 using json = nlohmann::json;
 

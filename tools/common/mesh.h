@@ -14,9 +14,9 @@ struct MeshArgument {
   std::string path, units = "m", up = "+y";
   void add_to(CLI::App* command);
   /// Loaded in metres, +Y up; throws InputError naming the file or value.
-  TriangleMesh load() const;
+  mesh::TriangleMesh load() const;
 };
 
-nlohmann::json topology_json(const TriangleMesh& mesh);
+nlohmann::json topology_json(const mesh::TriangleMesh& mesh);
 
 }  // namespace dresskit::cli

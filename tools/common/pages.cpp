@@ -7,6 +7,10 @@
 
 #include "dresskit/cloth/mesh_distance.h"
 
+using namespace dresskit::cloth;
+using namespace dresskit::mesh;
+using namespace dresskit::report;
+
 namespace dresskit::cli {
 using json = nlohmann::json;
 namespace {

@@ -13,14 +13,14 @@ namespace dresskit::cli {
 
 /// The segmented mesh coloured by part (`mesh` with its labels), the parts, the spectrum and the
 /// times; `summary` is labels.json without its per-vertex and per-face arrays.
-ReportPage segment_page(const std::string& path, const TriangleMesh& mesh,
+report::ReportPage segment_page(const std::string& path, const mesh::TriangleMesh& mesh,
                         const nlohmann::json& summary);
 
 /// The cloth at its start and at its end (or, when the run failed, at the last good state) with its
 /// colliders, strain and distance to the colliders as colour maps, energy over time, the phases'
 /// times and the report's main figures.
-ReportPage simulate_page(const std::string& scene_path, const ClothScene& scene,
+report::ReportPage simulate_page(const std::string& scene_path, const cloth::ClothScene& scene,
                          const Eigen::MatrixX3d& start, const Eigen::MatrixX3d& end,
-                         const RunResult& result, const nlohmann::json& report);
+                         const cloth::RunResult& result, const nlohmann::json& report);
 
 }  // namespace dresskit::cli

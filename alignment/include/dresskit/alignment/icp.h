@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::alignment {
 
 /// Points with optional unit normals, in metres.
 struct PointSet {
@@ -139,4 +139,4 @@ class PointLocator {
 /// Unit normals estimated by PCA over the k nearest neighbours, oriented away from the centroid.
 Eigen::MatrixX3d estimate_normals(const Eigen::MatrixX3d& V, int k = 12);
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -7,7 +7,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::alignment {
 
 /// Reads labels in the formats of ../shared/data/labels:
 /// - {"labels": ["torso", "arm_left", …]}: one name per vertex in the source file's vertex order;
@@ -18,7 +18,7 @@ namespace dresskit {
 /// Sets mesh.labels and mesh.label_names through mesh.source_vertex (so the file's vertex order is
 /// kept whatever the loader did). Throws InputError naming the file for a missing key, a count that
 /// differs from the mesh's source vertex count, or a malformed file.
-void apply_part_labels(TriangleMesh& mesh, const std::string& labels_path,
+void apply_part_labels(mesh::TriangleMesh& mesh, const std::string& labels_path,
                        const std::string& key = "", const std::string& mesh_path = "");
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

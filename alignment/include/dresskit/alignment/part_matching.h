@@ -7,7 +7,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::alignment {
 
 /// Shape descriptor of one labelled part, in the frame of the whole mesh.
 struct PartDescriptor {
@@ -24,7 +24,7 @@ struct PartDescriptor {
 };
 
 /// One descriptor per label that has at least one vertex.
-std::vector<PartDescriptor> describe_parts(const TriangleMesh& mesh);
+std::vector<PartDescriptor> describe_parts(const mesh::TriangleMesh& mesh);
 
 struct PartMatch {
   std::string garment_part, body_part;
@@ -54,4 +54,4 @@ MatchingResult match_parts(const std::vector<PartDescriptor>& garment,
 /// none.
 std::vector<int> optimal_assignment(const Eigen::MatrixXd& cost);
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -9,7 +9,7 @@
 #include "dresskit/alignment/part_matching.h"
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::alignment {
 
 struct PlacementOptions {
   MatchingOptions matching;
@@ -86,7 +86,7 @@ struct PlacementResult {
 
 /// Places a labelled garment on a labelled body (both in metres, +Y up). Throws InputError when the
 /// inputs cannot be used (no labels, no matched parts, unusable point sets).
-PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& body,
+PlacementResult place_garment(const mesh::TriangleMesh& garment, const mesh::TriangleMesh& body,
                               const PlacementOptions& options = {});
 
 /// Comparison of a posed garment with a reference placement (same vertex order), for tests/benches.
@@ -97,10 +97,10 @@ struct PlacementQuality {
   double inside_fraction = 0.0;   ///< garment vertices inside the body (winding number > 0.5)
   double max_edge_stretch = 0.0;  ///< max over edges of posed length / rest length − 1
 };
-PlacementQuality placement_quality(const Eigen::MatrixX3d& posed, const TriangleMesh& garment_rest,
-                                   const Eigen::MatrixX3d& reference, const TriangleMesh& body);
+PlacementQuality placement_quality(const Eigen::MatrixX3d& posed, const mesh::TriangleMesh& garment_rest,
+                                   const Eigen::MatrixX3d& reference, const mesh::TriangleMesh& body);
 
 /// Fraction of the points inside a closed mesh (generalised winding number > 0.5).
-double inside_fraction(const Eigen::MatrixX3d& points, const TriangleMesh& closed_mesh);
+double inside_fraction(const Eigen::MatrixX3d& points, const mesh::TriangleMesh& closed_mesh);
 
-}  // namespace dresskit
+}  // namespace dresskit::alignment

@@ -10,7 +10,7 @@
 #include "dresskit/cloth/stiffness_law.h"
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 /// layer_structural / layer_shear join the two layers of a double-layer garment (cloth/layers.h).
 enum class SpringType : std::uint8_t {
@@ -79,13 +79,13 @@ struct ClothModel {
 
 /// Builds particles and springs from a mesh (quads kept as quads: their diagonals are shear springs).
 /// Throws InputError when the fabric's density or the total mass is not positive.
-ClothModel build_cloth(const TriangleMesh& mesh, const Fabric& fabric,
+ClothModel build_cloth(const mesh::TriangleMesh& mesh, const Fabric& fabric,
                        const ClothBuildOptions& options = {});
 
 /// A flat rectangular grid of quads: size [m] along two in-plane axes, resolution = vertices per
 /// side (≥ 2), centred at `center`, facing `normal`. Vertex (i, j) is index j·nx + i; the first axis
 /// is the normal's perpendicular closest to +X. Throws InputError for a bad size or resolution.
-TriangleMesh make_grid(const Eigen::Vector2d& size, const Eigen::Vector2i& resolution,
+mesh::TriangleMesh make_grid(const Eigen::Vector2d& size, const Eigen::Vector2i& resolution,
                        const Eigen::Vector3d& center, const Eigen::Vector3d& normal);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

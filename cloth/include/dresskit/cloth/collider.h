@@ -5,7 +5,7 @@
 #include <memory>
 #include <string>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 class MeshDistance;
 
@@ -41,4 +41,4 @@ struct Collider {
   double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

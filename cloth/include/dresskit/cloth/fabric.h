@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 struct Fabric {
   std::string name, common_use;
@@ -42,4 +42,4 @@ Fabric fabric_by_name(const std::string& name);
 /// Throws InputError naming the file and the field for a missing, malformed or non-positive value.
 std::vector<Fabric> load_fabrics(const std::string& path);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

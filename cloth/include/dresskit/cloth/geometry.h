@@ -3,7 +3,7 @@
 // segment–triangle crossing test behind the intersection counts. No state, no allocation.
 #include <Eigen/Core>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 /// Closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection §5.1.5), with its
 /// barycentric coordinates in bary (u, v, w: q = u a + v b + w c) if bary is not null.
@@ -57,4 +57,4 @@ void shift_weighted_difference(Eigen::MatrixX3d& x, const Eigen::VectorXd& inver
 /// interior extrema (touching roots are among them), ascending; returns how many (at most 5).
 int cubic_candidates(const double c[4], double out[5]);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

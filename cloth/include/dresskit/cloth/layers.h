@@ -9,7 +9,7 @@
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/collider.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 struct LayerThickness {
   double thickness = 0.0;  ///< rest distance between the layers [m], > 0
@@ -81,4 +81,4 @@ struct LayerOrder {
 LayerOrder layer_order(const ClothModel& model, const Eigen::MatrixX3d& x,
                        const std::vector<Collider>& colliders);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

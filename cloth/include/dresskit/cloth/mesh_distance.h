@@ -12,7 +12,7 @@
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 struct MeshDistanceOptions {
   double cell = 0.005;     ///< grid spacing [m]
@@ -43,7 +43,7 @@ class MeshDistance {
  public:
   /// Throws InputError when the mesh has no faces or a non-finite coordinate, or the options are out
   /// of range; the grid is capped at 2e8 points (InputError naming the cell size beyond that).
-  explicit MeshDistance(const TriangleMesh& body, const MeshDistanceOptions& options = {});
+  explicit MeshDistance(const mesh::TriangleMesh& body, const MeshDistanceOptions& options = {});
 
   /// Signed distance from p to the surface [m], negative inside, and the outward unit direction
   /// (the normalised gradient of the distance). Exact to the grid's interpolation within the band
@@ -56,12 +56,12 @@ class MeshDistance {
   bool inside(const Eigen::Vector3d& p) const;
 
   const MeshDistanceReport& report() const { return report_; }
-  const TriangleMesh& mesh() const { return mesh_; }
+  const mesh::TriangleMesh& mesh() const { return mesh_; }
 
  private:
   int index(int i, int j, int k) const { return (k * size_[1] + j) * size_[0] + i; }
 
-  TriangleMesh mesh_;
+  mesh::TriangleMesh mesh_;
   TriangleBvh bvh_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
@@ -70,4 +70,4 @@ class MeshDistance {
   MeshDistanceReport report_;
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -7,7 +7,7 @@
 
 #include "dresskit/cloth/simulator.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 /// When a run counts as at rest and stops early (the energy-based termination of a static drape):
 /// the cloth's kinetic energy, as the RMS particle speed √(2 E_kin / M), and its fastest particle
@@ -73,4 +73,4 @@ void cloth_speeds(const ClothSimulator& sim, double& mean_speed, double& max_spe
 RunResult run(ClothSimulator& sim, const RunOptions& options, const std::function<void(int)>& on_frame = {},
               const std::function<void(const StepResult&)>& on_step = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

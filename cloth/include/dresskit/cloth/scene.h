@@ -9,7 +9,7 @@
 #include "dresskit/cloth/run.h"
 #include "dresskit/cloth/simulator.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 /// One garment of a scene: its fabric, whether it is a double layer and with which thickness, and
 /// where its particles are in the scene's model.
@@ -41,4 +41,4 @@ ClothScene load_cloth_scene(const std::string& path);
 std::string cloth_obj_text(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces,
                            const SpringSet& springs);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

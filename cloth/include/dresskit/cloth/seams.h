@@ -9,7 +9,7 @@
 
 #include "dresskit/cloth/cloth_model.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 /// A stitch's pull: stiffness k [N/m] up to max_force [N].
 struct StitchLaw {
@@ -77,4 +77,4 @@ std::vector<int> seam_representatives(const SeamSet& seams, int particles);
 void weld_seams(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& faces, const SeamSet& seams,
                 double tolerance, Eigen::MatrixX3d& V, Eigen::MatrixX3i& F, std::vector<int>& to);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -19,7 +19,7 @@
 
 #include "dresskit/cloth/triangle_bvh.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 struct SelfCollisionOptions {
   /// Distance kept between parts of the cloth that are not neighbours [m] (the proximity zone).
@@ -131,4 +131,4 @@ int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
 /// triangle it crosses), sorted, each once.
 std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -13,7 +13,7 @@
 #include "dresskit/cloth/collider.h"
 #include "dresskit/cloth/self_collision.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 enum class Integrator { symplectic_euler, implicit_euler, newton, projective };
 enum class LinearSolver { conjugate_gradient, ldlt };
@@ -372,4 +372,4 @@ class ClothSimulator {
                        Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X);
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

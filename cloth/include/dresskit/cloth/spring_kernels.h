@@ -4,7 +4,7 @@
 
 #include "dresskit/cloth/stiffness_law.h"
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 /// Elastic energy [J] of the spring with ends at xi, xj.
 double spring_energy(const StiffnessLaw& law, double L0, const Eigen::Vector3d& xi,
@@ -27,4 +27,4 @@ Eigen::Matrix3d spring_jacobian(const StiffnessLaw& law, double L0, const Eigen:
 Eigen::Vector3d spring_damping_force(double kd, const Eigen::Vector3d& xi, const Eigen::Vector3d& xj,
                                      const Eigen::Vector3d& vi, const Eigen::Vector3d& vj);
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

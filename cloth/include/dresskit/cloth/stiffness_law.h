@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <array>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 struct StiffnessLaw {
   /// Knots at ε = 0, knee/3, 2·knee/3, knee; k at the knots; segment 4 continues past the knee with
@@ -59,4 +59,4 @@ inline double fitted_tangent(double k0, double k_knee, double knee_strain, doubl
   return fitted_k(k0, k_knee, knee_strain, e) + e * slope;
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

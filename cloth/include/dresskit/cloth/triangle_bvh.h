@@ -8,7 +8,7 @@
 #include <limits>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::cloth {
 
 class TriangleBvh {
  public:
@@ -104,4 +104,4 @@ void TriangleBvh::self_pairs(Visit&& visit) const {
   if (!nodes_.empty()) pairs(0, 0, visit);
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::cloth

@@ -3,9 +3,9 @@
 // settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
 // how long: load → clean → units → segmentation → layers → placement → thickness → settle.
 //
-//   const dresskit::MeshFile body = dresskit::MeshFile::file("body.obj");
-//   const dresskit::GarmentFile shirt{dresskit::MeshFile::file("shirt.obj"), "gray-interlock"};
-//   const dresskit::DressResult r = dresskit::dress(body, {shirt});
+//   const dresskit::dressing::MeshFile body = dresskit::dressing::MeshFile::file("body.obj");
+//   const dresskit::dressing::GarmentFile shirt{dresskit::dressing::MeshFile::file("shirt.obj"), "gray-interlock"};
+//   const dresskit::dressing::DressResult r = dresskit::dressing::dress(body, {shirt});
 //   // r.garments[0].dressed: the settled shirt [m], in r.garments[0].mesh's vertex order
 #include <functional>
 #include <optional>
@@ -17,7 +17,7 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/segmentation/segment.h"
 
-namespace dresskit {
+namespace dresskit::dressing {
 
 /// How long and how finely to settle: `fast` (the simulator's defaults, at most 0.5 s simulated),
 /// `balanced` (the defaults, at most 1 s) or `accurate` (steps up to 1/240 s, 20 projective
@@ -30,17 +30,17 @@ std::string to_string(DressQuality quality);
 /// A mesh file and what is known about it.
 struct MeshFile {
   std::string path;
-  LoadOptions load;        ///< the file's units and up axis
+  mesh::LoadOptions load;        ///< the file's units and up axis
   std::string labels;      ///< part labels (JSON, the layouts of ../shared/data/labels); "" = segment
   std::string labels_key;  ///< the entry in the labels file; "" = the file's stem
   /// The mesh itself, made in memory rather than read from `path` (which then only names it) [m,
   /// +Y up]; its labels, when it has named ones, are its parts (no segmentation).
-  std::optional<TriangleMesh> mesh;
+  std::optional<mesh::TriangleMesh> mesh;
 
   /// A file with its units and up axis.
-  static MeshFile file(std::string path, LoadOptions load = {}, std::string labels = "");
+  static MeshFile file(std::string path, mesh::LoadOptions load = {}, std::string labels = "");
   /// A mesh made in memory, called `name` in messages and outputs.
-  static MeshFile given(std::string name, TriangleMesh mesh);
+  static MeshFile given(std::string name, mesh::TriangleMesh mesh);
 };
 
 struct GarmentFile {
@@ -56,8 +56,8 @@ struct DressOptions {
   /// false: the garments are worn inside to outside in the order given; true: the order is
   /// inferred from their kinds (bottoms under tops; of one kind, the larger surface outside).
   bool infer_layers = false;
-  PlacementOptions placement;
-  SegmentationOptions segmentation;
+  alignment::PlacementOptions placement;
+  segmentation::SegmentationOptions segmentation;
   /// A garment counts as already on the body, and is not placed, when at most this fraction of its
   /// vertices lies deeper than 2 mm inside the body and its vertices lie within on average
   /// `fit_distance` × the body's height of the body's surface [unitless]. (A garment made for a
@@ -91,11 +91,11 @@ struct DressedGarment {
   std::string fabric;
   MeshFile file;       ///< as given (a mesh given in memory kept: outputs follow its vertex order)
   bool in_memory = false;  ///< given in memory rather than read from file.path
-  TriangleMesh mesh;   ///< as loaded (and cleaned) [m]: its rest shape; labels = its parts
+  mesh::TriangleMesh mesh;   ///< as loaded (and cleaned) [m]: its rest shape; labels = its parts
   std::vector<DressPart> parts;
   bool labels_from_file = false;      ///< from a label file or given with the mesh
   bool placed_by_placement = false;   ///< false: it already sat on the body
-  PlacementResult placement;          ///< when placed_by_placement
+  alignment::PlacementResult placement;          ///< when placed_by_placement
   Eigen::MatrixX3d placed, dressed;   ///< [m], in mesh's vertex order
   int layer = 0;                      ///< 0 = worn next to the body
   double thickness = 0.0;             ///< the cloth's own thickness from its fabric [m]
@@ -110,13 +110,13 @@ struct DressedGarment {
 struct DressResult {
   MeshFile body_file;  ///< as given (without its in-memory mesh)
   DressQuality quality = DressQuality::fast;
-  TriangleMesh body;  ///< as loaded (and cleaned) [m]; labels = its parts
+  mesh::TriangleMesh body;  ///< as loaded (and cleaned) [m]; labels = its parts
   std::vector<DressPart> body_parts;
   bool body_labels_from_file = false;
   std::vector<DressedGarment> garments;  ///< inside to outside (as given unless infer_layers)
   std::vector<DressStage> stages;
   bool settled = false;   ///< the settle stage ran
-  RunResult settle;       ///< when it ran
+  cloth::RunResult settle;       ///< when it ran
   /// The settle step by step (the attempt kept): simulated time [s], elastic energy [J] and
   /// largest structural strain [unitless] after each step.
   std::vector<double> settle_time, settle_energy, settle_strain;
@@ -137,4 +137,4 @@ struct DressResult {
 /// given in memory that is broken (empty, indices out of range, non-finite, labels out of range).
 DressResult dress(const MeshFile& body, const std::vector<GarmentFile>& garments, const DressOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::dressing

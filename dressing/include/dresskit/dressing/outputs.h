@@ -2,13 +2,13 @@
 // The dressing pipeline's output stage: the dressed result as files and a report (docs/dressing.md,
 // docs/formats.md).
 //
-//   const dresskit::DressResult r = dresskit::dress(body, garments);
-//   const std::string report = dresskit::write_dress_outputs("out", r);
+//   const dresskit::dressing::DressResult r = dresskit::dressing::dress(body, garments);
+//   const std::string report = dresskit::dressing::write_dress_outputs("out", r);
 #include <string>
 
 #include "dresskit/dressing/dress.h"
 
-namespace dresskit {
+namespace dresskit::dressing {
 
 struct DressOutputOptions {
   bool segments = false;  ///< also segments.ply: every mesh coloured by part
@@ -35,4 +35,4 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& re
 void write_dress_failure_page(const std::string& folder, const DressResult& result,
                               const DressOutputOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::dressing

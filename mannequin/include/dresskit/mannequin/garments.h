@@ -8,7 +8,7 @@
 #include "dresskit/mesh/triangle_mesh.h"
 #include "dresskit/mannequin/mannequin.h"
 
-namespace dresskit {
+namespace dresskit::mannequin {
 
 enum class GarmentKind { tshirt, skirt, trousers };
 const std::vector<GarmentKind>& all_garment_kinds();
@@ -33,6 +33,6 @@ void check_options(const GarmentOptions& options);
 /// skirt 2 (waist, hem), trousers 3 (waist, two hems). Throws InputError naming the options when
 /// they are out of range or give another surface (e.g. a large ease on a very thin body fuses the
 /// trouser legs).
-TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const GarmentOptions& options = {});
+mesh::TriangleMesh make_garment(const BodyShape& body, GarmentKind kind, const GarmentOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

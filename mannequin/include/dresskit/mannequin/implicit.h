@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::mannequin {
 
 /// One solid: an ellipsoid (a = centre, b = semi-axes along x, y, z) or a round cone (a capsule whose
 /// radius goes linearly from ra at end a to rb at end b).
@@ -50,4 +50,4 @@ struct ImplicitUnion {
   Eigen::AlignedBox3d bounds(double pad) const;
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

@@ -10,7 +10,7 @@
 #include "dresskit/mesh/triangle_mesh.h"
 #include "dresskit/mannequin/implicit.h"
 
-namespace dresskit {
+namespace dresskit::mannequin {
 
 /// Body parts; the names match ../shared/data/labels/mh_body_part_labels.json.
 enum class BodyPart : int { torso = 0, head_neck, arm_left, arm_right, leg_left, leg_right };
@@ -57,6 +57,6 @@ void check_options(const MannequinOptions& options);
 
 /// A closed, manifold, outward-oriented triangle mesh of the body with per-vertex part labels
 /// (label_names = body_part_names()).
-TriangleMesh make_mannequin(const BodyShape& body);
+mesh::TriangleMesh make_mannequin(const BodyShape& body);
 
-}  // namespace dresskit
+}  // namespace dresskit::mannequin

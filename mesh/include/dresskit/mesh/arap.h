@@ -4,7 +4,7 @@
 // rotation, so that edges keep their lengths where the targets would stretch or fold them.
 #include <Eigen/Core>
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 struct ArapOptions {
   int iterations = 10;  ///< local (rotations) / global (positions) rounds, > 0
@@ -21,4 +21,4 @@ struct ArapOptions {
 Eigen::MatrixX3d arap_fit(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& target,
                           const Eigen::VectorXd& weights, const ArapOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

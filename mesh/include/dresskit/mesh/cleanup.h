@@ -5,7 +5,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 /// The most triangles a remeshing may make (about 1 GB of halfedge mesh).
 constexpr double kMaxRemeshTriangles = 5e6;
@@ -54,4 +54,4 @@ struct CleanupResult {
 /// triangles do.
 CleanupResult cleanup_mesh(const TriangleMesh& mesh, const CleanupOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -8,7 +8,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 class InsideTest {
  public:
@@ -30,4 +30,4 @@ class InsideTest {
   std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -7,7 +7,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 /// Length unit of a source file, as metres per file unit.
 struct Units {
@@ -77,4 +77,4 @@ bool is_saveable(const std::string& path);
 /// Writes text to path through a temporary file and a rename (no partial file on failure).
 void write_file_atomically(const std::string& path, const std::string& contents);
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -5,7 +5,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 /// A scalar field evaluated on a batch of points: values(i) = f(points.row(i)).
 using ScalarField = std::function<void(const Eigen::MatrixX3d& points, Eigen::VectorXd& values)>;
@@ -29,4 +29,4 @@ TriangleMesh cut_mesh(const TriangleMesh& mesh, const Eigen::VectorXd& value);
 double project_to_zero_set(const ScalarField& field, Eigen::MatrixX3d& V, int iterations = 3,
                            double max_step = 0.01);
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

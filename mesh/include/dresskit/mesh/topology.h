@@ -6,7 +6,7 @@
 
 #include "dresskit/mesh/triangle_mesh.h"
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 struct TopologyReport {
   int num_vertices = 0;
@@ -45,4 +45,4 @@ std::vector<TriangleMesh> split_components(const TriangleMesh& mesh);
 /// face outwards. Returns the number of faces flipped.
 int orient_closed_components_outward(TriangleMesh& mesh);
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 /// A triangle mesh with optional per-vertex attributes. Every attribute is either empty (0 rows) or has
 /// one row per vertex. Units: metres; axes: +Y up (loaders convert, see io.h).
@@ -57,4 +57,4 @@ void append_mesh(TriangleMesh& a, const TriangleMesh& b, const std::string& labe
 /// Per-vertex RGB colour (0–255) for a label: a fixed palette, grey for -1.
 Eigen::Vector3i label_colour(int label);
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

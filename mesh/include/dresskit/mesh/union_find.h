@@ -4,7 +4,7 @@
 #include <numeric>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::mesh {
 
 class UnionFind {
  public:
@@ -27,4 +27,4 @@ class UnionFind {
   std::vector<int> parent_;
 };
 
-}  // namespace dresskit
+}  // namespace dresskit::mesh

@@ -4,18 +4,18 @@
 // and per-vertex colour maps, then tables and plots of the run's figures, then the report's JSON.
 // Everything is in the file: it opens offline, from file://, in any browser.
 //
-//   dresskit::ReportPage page;
+//   dresskit::report::ReportPage page;
 //   page.title = "dress: body in shirt";
-//   dresskit::ReportMesh body{"body", "body", V, F};
+//   dresskit::report::ReportMesh body{"body", "body", V, F};
 //   page.meshes.push_back(body);
-//   page.sections.push_back(dresskit::ReportSection::table_of("Stages", {"stage", "s"}, rows));
-//   dresskit::write_report_html("out/report.html", page);
+//   page.sections.push_back(dresskit::report::ReportSection::table_of("Stages", {"stage", "s"}, rows));
+//   dresskit::report::write_report_html("out/report.html", page);
 #include <Eigen/Core>
 #include <string>
 #include <utility>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::report {
 
 /// One value per vertex of a mesh in one of its shapes, drawn as a colour map.
 struct ReportField {
@@ -103,4 +103,4 @@ Eigen::VectorXd vertex_strain(const Eigen::MatrixX3d& V, const Eigen::MatrixX3d&
 /// sizes; "–" for a non-finite value.
 std::string report_number(double value, int digits = 3);
 
-}  // namespace dresskit
+}  // namespace dresskit::report

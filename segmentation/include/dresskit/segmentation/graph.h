@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 /// How an edge's affinity is made; every kind is multiplied by the dihedral (concavity) factor.
 enum class AffinityKind {
@@ -105,4 +105,4 @@ int count_boundary_loops(const MeshGraph& graph, Inside inside) {
   return static_cast<int>(boundary_loops(graph, inside).size());
 }
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

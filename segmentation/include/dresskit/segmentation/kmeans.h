@@ -2,7 +2,7 @@
 // k-means++ with restarts and a fixed seed (deterministic), a pure kernel.
 #include <Eigen/Core>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 struct KMeansOptions {
   int restarts = 10;         ///< independent k-means++ starts; the lowest cost wins
@@ -20,4 +20,4 @@ struct KMeansResult {
 /// Clusters the rows of X (#points × dim) into k clusters (1 ≤ k ≤ #points).
 KMeansResult kmeans(const Eigen::MatrixXd& X, int k, const KMeansOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -6,7 +6,7 @@
 
 #include "dresskit/segmentation/graph.h"
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 /// Keeps the largest connected patch (by vertex area) of every label and gives each other patch to
 /// the neighbouring label that shares the most affinity with it, until every label present is one
@@ -80,4 +80,4 @@ Eigen::VectorXd part_elongation(const MeshGraph& graph, const Adjacency& adjacen
 /// #F face labels: the label that at least two corners share, else the first corner's.
 Eigen::VectorXi face_labels_from_vertices(const Eigen::MatrixX3i& F, const Eigen::VectorXi& labels);
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

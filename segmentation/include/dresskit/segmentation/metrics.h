@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 struct LabelComparison {
   /// For every truth label t: the predicted label matched to it (−1 when none) and the IoU of the
@@ -26,4 +26,4 @@ LabelComparison compare_labels(const Eigen::VectorXi& predicted, const Eigen::Ve
 /// result[r] = column or −1. O(n³) Hungarian method.
 std::vector<int> max_weight_matching(const Eigen::MatrixXd& score);
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -6,7 +6,7 @@
 #include "dresskit/segmentation/graph.h"
 #include "dresskit/segmentation/segment.h"
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 /// Up from the area-weighted PCA (largest spread; sign: towards the side where the area centroid
 /// lies relative to the middle of the extent), forward from the feet (the lowest 4% of the height
@@ -26,4 +26,4 @@ std::vector<NamedPart> name_parts(const Eigen::MatrixX3d& V, const MeshGraph& gr
                                   const std::vector<int>& label_component,
                                   const AxesEstimate& axes);
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

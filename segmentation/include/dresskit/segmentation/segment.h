@@ -11,7 +11,7 @@
 #include "dresskit/segmentation/kmeans.h"
 #include "dresskit/segmentation/spectral.h"
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 /// The largest number of parts (given or automatic) that segment_mesh accepts.
 constexpr int kMaxParts = 64;
@@ -122,6 +122,6 @@ struct SegmentationResult {
 /// Segments the mesh. Throws InputError for an unusable mesh or option (no faces, parts < 0, more
 /// parts than vertices or than kMaxParts, fewer parts than components) and EigenSolverError when
 /// the eigen-solver does not converge (the message says what was tried).
-SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOptions& options = {});
+SegmentationResult segment_mesh(const mesh::TriangleMesh& mesh, const SegmentationOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -9,7 +9,7 @@
 #include "dresskit/segmentation/graph.h"
 #include "dresskit/segmentation/segment.h"
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 /// A skirt's own frame: the axis from the hem's centre to the waist's, and the character's left
 /// made perpendicular to it.
@@ -48,4 +48,4 @@ void split_skirt(const MeshGraph& graph, const Eigen::MatrixX3d& V,
                  const Eigen::VectorXd& vertex_area, const std::vector<int>& vertices,
                  SkirtFrame& frame, Eigen::VectorXi& labels);
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace dresskit {
+namespace dresskit::segmentation {
 
 enum class LaplacianKind {
   normalized,  ///< L = I − D^{−1/2} W D^{−1/2} (default: eigenvalues in [0, 2], scale-free)
@@ -49,4 +49,4 @@ Eigen::SparseMatrix<double> graph_laplacian(const Eigen::SparseMatrix<double>& W
 EigenResult smallest_eigenpairs(const Eigen::SparseMatrix<double>& L, int nev,
                                 const EigenOptions& options = {});
 
-}  // namespace dresskit
+}  // namespace dresskit::segmentation

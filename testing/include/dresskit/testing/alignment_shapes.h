@@ -14,13 +14,13 @@ namespace dresskit::test {
 
 struct Shape {
   std::string name;
-  PointSet points;  // vertices with area-weighted normals
+  alignment::PointSet points;  // vertices with area-weighted normals
 };
 
-inline PointSet part_points(const TriangleMesh& mesh, const std::string& part) {
-  const Eigen::MatrixX3d N = vertex_normals(mesh.V, mesh.F);
-  PointSet out;
-  if (part.empty()) return PointSet{mesh.V, N};
+inline alignment::PointSet part_points(const mesh::TriangleMesh& mesh, const std::string& part) {
+  const Eigen::MatrixX3d N = mesh::vertex_normals(mesh.V, mesh.F);
+  alignment::PointSet out;
+  if (part.empty()) return alignment::PointSet{mesh.V, N};
   std::vector<int> rows;
   for (int v = 0; v < mesh.num_vertices(); ++v)
     if (mesh.labels(v) >= 0 && mesh.label_names[mesh.labels(v)] == part) rows.push_back(v);
@@ -37,15 +37,15 @@ inline PointSet part_points(const TriangleMesh& mesh, const std::string& part) {
 /// with_large a MakeHuman leg, the GarmentCode body and a garment.
 inline std::vector<Shape> alignment_shapes(const std::string& data_dir, bool with_large) {
   std::vector<Shape> shapes;
-  const TriangleMesh mannequin = make_mannequin(BodyShape(MannequinOptions{}));
+  const mesh::TriangleMesh mannequin = make_mannequin(mannequin::BodyShape(mannequin::MannequinOptions{}));
   shapes.push_back({"mannequin", part_points(mannequin, "")});
   shapes.push_back({"mannequin torso", part_points(mannequin, "torso")});
   if (data_dir.empty() || !std::filesystem::is_directory(data_dir)) return shapes;
-  LoadOptions dm;
-  dm.units = Units::parse("dm");
+  mesh::LoadOptions dm;
+  dm.units = mesh::Units::parse("dm");
   const std::string body_path = data_dir + "/bodies/mh_woman_young_average.obj";
-  TriangleMesh body = load_mesh(body_path, dm);
-  apply_part_labels(body, data_dir + "/labels/mh_body_part_labels.json");
+  mesh::TriangleMesh body = mesh::load_mesh(body_path, dm);
+  alignment::apply_part_labels(body, data_dir + "/labels/mh_body_part_labels.json");
   shapes.push_back({"mh_woman body", part_points(body, "")});
   shapes.push_back({"mh_woman torso", part_points(body, "torso")});
   if (with_large) {
@@ -53,9 +53,9 @@ inline std::vector<Shape> alignment_shapes(const std::string& data_dir, bool wit
     // determined under 0.5 % noise (reported separately in docs/alignment.md).
     shapes.push_back({"mh_woman leg_left", part_points(body, "leg_left")});
     shapes.push_back(
-        {"gc_mean_all body", part_points(load_mesh(data_dir + "/bodies/gc_mean_all.obj"), "")});
+        {"gc_mean_all body", part_points(mesh::load_mesh(data_dir + "/bodies/gc_mean_all.obj"), "")});
     const std::string garment = data_dir + "/garments/mh_female_casualsuit01.obj";
-    shapes.push_back({"casualsuit01 garment", part_points(load_mesh(garment, dm), "")});
+    shapes.push_back({"casualsuit01 garment", part_points(mesh::load_mesh(garment, dm), "")});
   }
   return shapes;
 }

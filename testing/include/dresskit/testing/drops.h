@@ -34,7 +34,7 @@ const DropCase& drop_case(const std::string& name, int resolution = 40);
 std::string drop_scene(const DropCase& c, const std::string& simulation = "{}", double duration = 2.0);
 
 struct DropOutcome {
-  RunResult run;
+  cloth::RunResult run;
   int steps = 0;
   double simulated = 0.0;       ///< [s]
   double seconds = 0.0;         ///< CPU time of the run (stepping thread) [s]

@@ -7,7 +7,7 @@
 namespace dresskit::test {
 
 /// A surface with no border, manifold and oriented outward, in `components` pieces.
-inline void expect_closed_outward(const TopologyReport& t, int components = 1) {
+inline void expect_closed_outward(const mesh::TopologyReport& t, int components = 1) {
   EXPECT_TRUE(t.manifold);
   EXPECT_TRUE(t.closed);
   EXPECT_TRUE(t.outward);

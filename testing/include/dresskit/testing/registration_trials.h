@@ -20,14 +20,14 @@ struct TrialOptions {
 /// One trial: source = T⁻¹(noisy subset) + outliers; the registration of source onto target
 /// should recover `truth` (source → target).
 struct Trial {
-  PointSet source, target;
+  alignment::PointSet source, target;
   Eigen::Matrix4d truth = Eigen::Matrix4d::Identity();
   Eigen::Vector3d source_centre = Eigen::Vector3d::Zero();  ///< centroid of the clean moved points
   double diagonal = 0.0;                                    ///< target bounding-box diagonal [m]
 };
 
 /// Builds a trial from clean points with normals (the target).
-Trial make_trial(const PointSet& clean, const TrialOptions& options, std::mt19937& rng);
+Trial make_trial(const alignment::PointSet& clean, const TrialOptions& options, std::mt19937& rng);
 
 struct TrialError {
   double rotation_deg = 0.0;  ///< angle of R_estimated R_trueᵀ [degrees]

@@ -10,7 +10,7 @@ namespace dresskit::test {
 /// Generalised winding number of p with respect to a closed triangle mesh: Σ signed solid angles / 4π
 /// (Van Oosterom & Strackee), ≈ ±1 inside, ≈ 0 outside whatever the orientation (the sign says it).
 /// Brute force over every triangle.
-inline double winding_number(const TriangleMesh& m, const Eigen::Vector3d& p) {
+inline double winding_number(const mesh::TriangleMesh& m, const Eigen::Vector3d& p) {
   double total = 0.0;
   for (int t = 0; t < m.num_faces(); ++t) {
     const Eigen::Vector3d a = m.V.row(m.F(t, 0)).transpose() - p, b = m.V.row(m.F(t, 1)).transpose() - p,

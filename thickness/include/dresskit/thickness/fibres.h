@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::thickness {
 
 struct Fibre {
   std::string name;
@@ -51,4 +51,4 @@ struct FabricThermal {
 /// Throws InputError for a bad composition or solidity.
 FabricThermal fabric_thermal(const Composition& composition, double solidity);
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness

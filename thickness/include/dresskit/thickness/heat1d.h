@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace dresskit {
+namespace dresskit::thickness {
 
 enum class HeatScheme { explicit_euler, implicit_euler, crank_nicolson };
 /// "explicit", "implicit", "crank-nicolson" (or "cn"); throws InputError naming the value otherwise.
@@ -66,4 +66,4 @@ double crossing_depth(const Eigen::VectorXd& x, const Eigen::VectorXd& temperatu
 void solve_tridiagonal(const Eigen::VectorXd& sub, const Eigen::VectorXd& diag,
                        const Eigen::VectorXd& sup, Eigen::VectorXd& rhs);
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness

@@ -10,7 +10,7 @@
 #include "dresskit/thickness/fibres.h"
 #include "dresskit/thickness/heat1d.h"
 
-namespace dresskit {
+namespace dresskit::thickness {
 
 struct ThicknessOptions {
   double t_skin = 37.0;    ///< [°C]
@@ -73,4 +73,4 @@ DownFill down_fill(const std::vector<double>& panel_areas_m2, double thickness_m
 void write_temperature_surface(const std::string& dir, const ThicknessResult& result,
                                const ThicknessOptions& options);
 
-}  // namespace dresskit
+}  // namespace dresskit::thickness
