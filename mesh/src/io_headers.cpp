@@ -56,6 +56,10 @@ void check_ply(const std::string& path, std::uint64_t file_size) {
       continue;
     }
     if (key == "end_header") {
+      // assimp finds the header's end only as a line of its own (after "end_header" and another
+      // whitespace character it searched on forever).
+      if (line != "end_header")
+        throw InputError(path + ": PLY header line " + std::to_string(n + 1) + " has more than 'end_header'");
       ended = true;
       break;
     }
@@ -88,6 +92,9 @@ void check_ply(const std::string& path, std::uint64_t file_size) {
         least = static_cast<std::uint64_t>(ply_type_size(type));
       }
       elements.back().least_bytes += binary ? least : 2;
+    } else if (!key.empty() && key != "comment" && key != "obj_info") {
+      throw InputError(path + ": PLY header line " + std::to_string(n + 1) + " starts with an unknown word '" +
+                       key.substr(0, 40) + "'");
     }
   }
   if (!ended) throw InputError(path + ": PLY header has no 'end_header' line");

@@ -56,10 +56,21 @@ const BadFile kBadFiles[] = {
     {"huge_binary.ply", "ply\nformat binary_little_endian 1.0\nelement vertex 1000000000\nproperty float x\n"
                         "property float y\nproperty float z\nend_header\n" + garbage(36),
      "more than the file's 36 bytes"},
-    // A header whose end is misspelt (assimp looped on it).
+    // A header whose end is misspelt or missing (assimp looped on both).
+    {"misspelt_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nend_hedaer\n0 0 0\n1 0 0\n0 1 0\n",
+     "line 7 starts with an unknown word 'end_hedaer'"},
     {"no_end.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
-                   "property float z\nend_hedaer\n0 0 0\n1 0 0\n0 1 0\n",
+                   "property float z\n",
      "no 'end_header' line"},
+    // Found by fuzzing: assimp searched forever for a header's end followed by another whitespace
+    // character, and an unknown header line is refused rather than guessed at.
+    {"end_tab.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                    "property float z\nend_header\v0 0 0\n1 0 0\n0 1 0\n",
+     "line 7 has more than 'end_header'"},
+    {"unknown_word.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n-property float y\n"
+                         "property float z\nend_header\n0 0 0\n1 0 0\n0 1 0\n",
+     "line 5 starts with an unknown word '-property'"},
     {"huge.off", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000000000 vertices"},
     {"out_of_range.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n", "face 0 names vertex 7 of 3"},
     {"negative.off", "OFF\n3 -1 0\n0 0 0\n1 0 0\n0 1 0\n", "is not a whole number"},
@@ -69,7 +80,7 @@ const BadFile kBadFiles[] = {
     // fuzzing: assimp's PLY reader looped on it), an OFF declaring 10⁹ vertices named .obj.
     {"ply_inside.glb", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                        "property float z\nenf\xac\xac" "ement face 2\np",
-     "no 'end_header' line"},
+     "line 7 starts with an unknown word"},
     {"off_inside.obj", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000000000 vertices"},
 };
 }  // namespace
