@@ -1,4 +1,4 @@
-// Projective dynamics (Bouaziz et al. 2014, "Projective Dynamics: Fusing Constraint Projections for
+// Projective dynamics (Bouaziz et al. 2014, "ProjectiveFactor Dynamics: Fusing Constraint Projections for
 // Fast Simulation"; for mass-spring systems Liu et al. 2013, "Fast Simulation of Mass-Spring
 // Systems"): backward Euler's incremental potential with every spring as the quadratic
 // w/2 |xj − xi − d|². Global step: one constant, prefactored linear system for the three coordinate
@@ -55,32 +55,32 @@ std::string to_string(TimeScheme scheme) { return name_of(scheme, kTimeSchemes);
 
 // The factorisation for the step h in the matrix: the current one, one kept from a recent step
 // size (BDF2's backward Euler start-up, adaptive steps dt / 2^k), or a new one.
-void ClothSimulator::prepare_projective(double h, const std::vector<double>* weights) {
-  const int n = static_cast<int>(x_.rows());
-  const SpringSet& s = model_.springs;
-  const double c = options_.air_damping;
-  if (projective_ && projective_->h != h) {
-    for (auto it = projective_cache_.begin(); it != projective_cache_.end(); ++it) {
-      if ((*it)->h != h || (*it)->pinned != pinned_) continue;
-      std::shared_ptr<Projective> found = *it;
-      projective_cache_.erase(it);
-      projective_cache_.insert(projective_cache_.begin(), projective_);
-      projective_ = found;
+void ProjectiveDynamics::prepare(const ClothSimulator& sim, double h, const std::vector<double>* weights) {
+  const int n = static_cast<int>(sim.x_.rows());
+  const SpringSet& s = sim.model_.springs;
+  const double c = sim.options_.air_damping;
+  if (current_ && current_->h != h) {
+    for (auto it = cache_.begin(); it != cache_.end(); ++it) {
+      if ((*it)->h != h || (*it)->pinned != sim.pinned_) continue;
+      std::shared_ptr<ProjectiveFactor> found = *it;
+      cache_.erase(it);
+      cache_.insert(cache_.begin(), current_);
+      current_ = found;
       break;
     }
   }
-  if (!weights && projective_ && projective_->h == h && projective_->pinned == pinned_ &&
-      projective_->single_precision == options_.projective.single_precision)
+  if (!weights && current_ && current_->h == h && current_->pinned == sim.pinned_ &&
+      current_->single_precision == sim.options_.projective.single_precision)
     return;
   // New adaptive weights for the same step and pins: the matrices' values change in place through
   // each spring's entries, and the factor keeps its ordering and symbolic analysis (building the
   // matrices anew from triplets took as long as the numeric factorisation, ~4.5 ms on the error
   // bench's cloth).
-  if (weights && projective_ && projective_->adaptive && projective_->ok && projective_->h == h &&
-      projective_->pinned == pinned_ &&
-      projective_->single_precision == options_.projective.single_precision &&
-      projective_->same_layout) {
-    Projective& P = *projective_;
+  if (weights && current_ && current_->adaptive && current_->ok && current_->h == h &&
+      current_->pinned == sim.pinned_ &&
+      current_->single_precision == sim.options_.projective.single_precision &&
+      current_->same_layout) {
+    ProjectiveFactor& P = *current_;
     double* a = P.Acol.valuePtr();
     double* b = P.to_pinned.valuePtr();
     for (int k = 0; k < s.size(); ++k) {
@@ -106,22 +106,22 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   }
   // Adaptive weights carry over to a new factorisation (a new step size or pin set).
   std::vector<double> kept;
-  if (!weights && projective_ && projective_->adaptive) {
-    for (const LocalSpring& q : projective_->springs) kept.push_back(q.w);
+  if (!weights && current_ && current_->adaptive) {
+    for (const LocalSpring& q : current_->springs) kept.push_back(q.w);
     weights = &kept;
   }
-  auto p = std::make_shared<Projective>();
+  auto p = std::make_shared<ProjectiveFactor>();
   p->h = h;
-  p->pinned = pinned_;
-  p->single_precision = options_.projective.single_precision;
+  p->pinned = sim.pinned_;
+  p->single_precision = sim.options_.projective.single_precision;
   p->adaptive = weights != nullptr;
-  p->inertia = model_.mass * (1.0 / (h * h) + c / h);
+  p->inertia = sim.model_.mass * (1.0 / (h * h) + c / h);
   std::vector<Eigen::Triplet<double>> a, b;
   a.reserve(static_cast<std::size_t>(4 * s.size() + n));
-  for (int v = 0; v < n; ++v) a.emplace_back(v, v, pinned_[v] ? 1.0 : p->inertia[v]);
+  for (int v = 0; v < n; ++v) a.emplace_back(v, v, sim.pinned_[v] ? 1.0 : p->inertia[v]);
   auto couple = [&](int row, int col, double value) {
-    if (pinned_[row]) return;
-    (pinned_[col] ? b : a).emplace_back(row, col, value);
+    if (sim.pinned_[row]) return;
+    (sim.pinned_[col] ? b : a).emplace_back(row, col, value);
   };
   p->springs.resize(static_cast<std::size_t>(s.size()));
   for (int k = 0; k < s.size(); ++k) {
@@ -139,14 +139,14 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   // A stitch is the quadratic ½ k |Σ w x − d|² with d its soft-threshold target (seams.h).
   int idx[3];
   double sw[3];
-  for (int k = 0; k < model_.seams.size(); ++k) {
-    seam_weights(model_.seams, k, idx, sw);
+  for (int k = 0; k < sim.model_.seams.size(); ++k) {
+    seam_weights(sim.model_.seams, k, idx, sw);
     for (int p = 0; p < 3; ++p)
-      for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], model_.seams.stiffness[k] * sw[p] * sw[q]);
+      for (int q = 0; q < 3; ++q) couple(idx[p], idx[q], sim.model_.seams.stiffness[k] * sw[p] * sw[q]);
   }
   for (const LocalSpring& q : p->springs) (q.lagged_w > 0.0 ? p->bend : p->stretch).push_back(q);
   for (int v = 0; v < n; ++v)
-    if (pinned_[v]) p->pinned_list.push_back(v);
+    if (sim.pinned_[v]) p->pinned_list.push_back(v);
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(a.begin(), a.end());
   p->A = A;
@@ -170,8 +170,8 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
       const bool lagged = s.type[k] == SpringType::bending;
       const int rows[4] = {i, j, i, j}, cols[4] = {i, j, j, i};
       for (int e = 0; e < 4; ++e) {
-        const bool in = !pinned_[rows[e]] && !(lagged && e >= 2);
-        const bool to_pin = in && pinned_[cols[e]];
+        const bool in = !sim.pinned_[rows[e]] && !(lagged && e >= 2);
+        const bool to_pin = in && sim.pinned_[cols[e]];
         p->a_offset[static_cast<std::size_t>(k)][e] =
             in && !to_pin ? offset(A, rows[e], cols[e]) : -1;
         p->b_offset[static_cast<std::size_t>(k)][e] =
@@ -181,22 +181,22 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
   }
   // Adaptive weights keep no other step sizes' factorisations: a refactorisation for new weights (or a new step) keeps the
   // old factor's ordering and symbolic analysis (same sparsity while the pins are the same).
-  const bool reuse = p->adaptive && projective_ && projective_->ok &&
-                     projective_->pinned == pinned_ &&
-                     projective_->single_precision == p->single_precision;
+  const bool reuse = p->adaptive && current_ && current_->ok &&
+                     current_->pinned == sim.pinned_ &&
+                     current_->single_precision == p->single_precision;
   if (reuse) {
-    p->single = std::move(projective_->single);
-    p->full = std::move(projective_->full);
+    p->single = std::move(current_->single);
+    p->full = std::move(current_->full);
   }
   p->ok = p->single_precision ? (reuse ? p->single.refactor(A) : p->single.compute(A))
                               : (reuse ? p->full.refactor(A) : p->full.compute(A));
   if (p->adaptive) {
-    projective_cache_.clear();
-  } else if (projective_ && projective_->h != h) {
-    projective_cache_.insert(projective_cache_.begin(), projective_);
-    if (projective_cache_.size() > 4) projective_cache_.pop_back();
+    cache_.clear();
+  } else if (current_ && current_->h != h) {
+    cache_.insert(cache_.begin(), current_);
+    if (cache_.size() > 4) cache_.pop_back();
   }
-  projective_ = p;
+  current_ = p;
 }
 
 // One minimisation of the incremental potential
@@ -204,18 +204,16 @@ void ClothSimulator::prepare_projective(double h, const std::vector<double>* wei
 // (pinned particles at x0) by local/global iterations from X; h is the current factorisation's.
 // Fills the contacts of the last collision pass (projective_collisions) and returns the
 // iterations taken.
-int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
-                                     const Eigen::MatrixX3d& air_base, const Eigen::Vector3d& wind,
-                                     const Eigen::MatrixX3d& x0,
-                                     Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X,
-                                     Contacts& contacts) {
-  const Projective& P = *projective_;
-  const double h = P.h, c = options_.air_damping;
-  const int n = static_cast<int>(x_.rows());
+int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& target,
+                              const Eigen::MatrixX3d& air_base, const Eigen::Vector3d& wind,
+                              const Eigen::MatrixX3d& x0, RowX3& X, ClothSimulator::Contacts& contacts) {
+  const ProjectiveFactor& P = *current_;
+  const double h = P.h, c = sim.options_.air_damping;
+  const int n = static_cast<int>(sim.x_.rows());
   // Single precision solves for the change δ of the iterate from the residual b − A X; without
   // stitches the residual is formed in the local step itself (the springs' w (d − e)), so the
   // product with A is not needed (it was 0.07 of the ~0.9 ms an iteration took).
-  const bool fused = P.single_precision && model_.seams.size() == 0;
+  const bool fused = P.single_precision && sim.model_.seams.size() == 0;
   RowX3& fixed = P.fixed;
   fixed.resize(n, 3);
   {
@@ -223,9 +221,9 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     const double* T = target.data();
     const double* B = air_base.data();
     for (int d = 0; d < 3; ++d) {
-      const double air = h * wind[d], g = options_.gravity[d];
+      const double air = h * wind[d], g = sim.options_.gravity[d];
       for (int v = 0; v < n; ++v) {
-        const double m = model_.mass(v);
+        const double m = sim.model_.mass(v);
         F[3 * v + d] = (m / (h * h)) * T[v + d * n] + (c * m / h) * (B[v + d * n] + air) + m * g;
       }
     }
@@ -238,7 +236,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
   }
   for (int v : P.pinned_list) fixed.row(v) = x0.row(v), X.row(v) = x0.row(v);
 
-  if (options_.projective.lbfgs_history > 0) return projective_lbfgs(target, air_base, wind, x0, X);
+  if (sim.options_.projective.lbfgs_history > 0) return lbfgs(sim, target, air_base, wind, x0, X);
   RowX3 &rhs = P.rhs, &previous = P.previous;
   // Contacts inside the iterations (projective_collisions). A particle in contact carries a normal
   // force f n in the global step's right-hand side. After each global step its penetration p below
@@ -252,8 +250,8 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
   // pass after the step to push them back out (on the cloth-onto-sphere scene at 1/60 s that had
   // sunk the top of the cloth 1.8 cm each step, and the push back stretched the strain-limited
   // springs around the sphere's top by 6 %).
-  const bool in_contact = options_.projective.collisions && !options_.colliders.empty();
-  ContactForces& cf = contact_forces_;
+  const bool in_contact = sim.options_.projective.collisions && !sim.options_.colliders.empty();
+  ClothSimulator::ContactForces& cf = sim.contact_forces_;
   if (in_contact && cf.force.size() != static_cast<std::size_t>(n)) {
     cf.force.assign(static_cast<std::size_t>(n), 0.0);
     cf.collider.assign(static_cast<std::size_t>(n), -1);
@@ -267,20 +265,20 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
       R[3 * v] += f * nv[0], R[3 * v + 1] += f * nv[1], R[3 * v + 2] += f * nv[2];
     }
   };
-  auto contact_pass = [&](RowX3& Xc, Contacts& found) {
+  auto contact_pass = [&](RowX3& Xc, ClothSimulator::Contacts& found) {
     found.clear();
-    const int colliders = static_cast<int>(options_.colliders.size());
+    const int colliders = static_cast<int>(sim.options_.colliders.size());
     for (int v = 0; v < n; ++v) {
-      if (pinned_[v]) continue;
+      if (sim.pinned_[v]) continue;
       // A particle that started the step inside a collider leaves it at a bounded speed.
-      const double margin = exit_margin(v, options_.collision_margin + model_.layer_offset[model_.layer[v]]);
+      const double margin = sim.exit_margin(v, sim.options_.collision_margin + sim.model_.layer_offset[sim.model_.layer[v]]);
       const Eigen::Vector3d p = Xc.row(v).transpose();
       double& f = cf.force[v];
       // Far from every collider by the last collider pass's lookups, and carrying no force: no
       // contact, no lookup (the lookups were a quarter of the head-drop scene's time).
       if (f == 0.0) {
         bool far = true;
-        for (int ci = 0; ci < colliders && far; ++ci) far = distance_lower_bound(v, ci, p) > margin;
+        for (int ci = 0; ci < colliders && far; ++ci) far = sim.distance_lower_bound(v, ci, p) > margin;
         if (far) {
           cf.collider[v] = -1;
           continue;
@@ -291,7 +289,7 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
       Eigen::Vector3d normal;
       for (int ci = 0; ci < colliders; ++ci) {
         Eigen::Vector3d nc;
-        const double g = options_.colliders[ci].distance(p, &nc) - margin;
+        const double g = sim.options_.colliders[ci].distance(p, &nc) - margin;
         if (g < gap) gap = g, nearest = ci, normal = nc;
       }
       if (nearest != cf.collider[v]) f = 0.0;
@@ -306,10 +304,10 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
       if (f > 0.0 || gap < 0.0) found.add(v, nearest, normal, std::max(0.0, -gap));
     }
   };
-  const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
-  const double* rest = model_.rest_positions.data();
+  const double beyond = sim.options_.dynamic_stiffness ? 1.0 + sim.options_.strain_limit : HUGE_VAL;
+  const double* rest = sim.model_.rest_positions.data();
   int iterations = 0;
-  for (int it = 0; it < options_.projective.iterations && fused; ++it) {
+  for (int it = 0; it < sim.options_.projective.iterations && fused; ++it) {
     double* R = rhs.data();
     const double* x = X.data();
     const double* F = fixed.data();
@@ -334,9 +332,9 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     if (in_contact) contact_pass(X, contacts);
     const double moved2 = largest_move2(X.data(), previous.data(), n);
     iterations = it + 1;
-    if (std::sqrt(moved2) < options_.iteration_tolerance) break;
+    if (std::sqrt(moved2) < sim.options_.iteration_tolerance) break;
   }
-  for (int it = 0; it < options_.projective.iterations && !fused; ++it) {
+  for (int it = 0; it < sim.options_.projective.iterations && !fused; ++it) {
     rhs = fixed;
     double* R = rhs.data();
     const double* x = X.data();
@@ -348,12 +346,12 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     // Stitches: k d spread by their weights (d: the soft-threshold target of the current gap).
     int idx[3];
     double sw[3];
-    for (int k = 0; k < model_.seams.size(); ++k) {
-      seam_weights(model_.seams, k, idx, sw);
+    for (int k = 0; k < sim.model_.seams.size(); ++k) {
+      seam_weights(sim.model_.seams, k, idx, sw);
       const Eigen::Vector3d gap =
           (sw[0] * X.row(idx[0]) + sw[1] * X.row(idx[1]) + sw[2] * X.row(idx[2])).transpose();
       const Eigen::RowVector3d d =
-          model_.seams.stiffness[k] * stitch_target(model_.seams, k, gap).transpose();
+          sim.model_.seams.stiffness[k] * stitch_target(sim.model_.seams, k, gap).transpose();
       for (int p = 0; p < 3; ++p) rhs.row(idx[p]) += sw[p] * d;
     }
     if (in_contact) add_contact_forces(R);
@@ -384,30 +382,30 @@ int ClothSimulator::projective_solve(const Eigen::MatrixX3d& target,
     const double moved2 = largest_move2(X.data(), previous.data(), n);
     const double moved = std::sqrt(moved2);
     iterations = it + 1;
-    if (moved < options_.iteration_tolerance) break;
+    if (moved < sim.options_.iteration_tolerance) break;
   }
   return iterations;
 }
 
-void ClothSimulator::step_projective(StepResult& r) {
-  const double dt = dt_;
-  const int n = static_cast<int>(x_.rows());
-  const TimeScheme scheme = options_.projective.time_scheme;
+void ProjectiveDynamics::step(ClothSimulator& sim, StepResult& r) {
+  const double dt = sim.dt_;
+  const int n = static_cast<int>(sim.x_.rows());
+  const TimeScheme scheme = sim.options_.projective.time_scheme;
   // BDF2's history: a completed step since the last try makes its start the previous state.
-  if (history_.t_start != time_) {
+  if (history_.t_start != sim.time_) {
     if (history_.t_start >= 0.0) {
       history_.x_prev = history_.x_start;
       history_.v_prev = history_.v_start;
       history_.t_prev = history_.t_start;
     }
-    history_.x_start = x_;
-    history_.v_start = v_;
-    history_.t_start = time_;
+    history_.x_start = sim.x_;
+    history_.v_start = sim.v_;
+    history_.t_start = sim.time_;
   }
   // Without a previous state a step apart (the first step, after a change of step or set_state) the
   // step is backward Euler: its O(h²) error enters once, so the run stays second order.
   const bool bdf2 = scheme == TimeScheme::bdf2 && history_.t_prev >= 0.0 &&
-                    std::abs(time_ - history_.t_prev - dt) <= 1e-9 * dt;
+                    std::abs(sim.time_ - history_.t_prev - dt) <= 1e-9 * dt;
   // The step in the matrix: BDF2 2h/3; the midpoint rule's half step h/2 (its midpoint y is a
   // backward Euler step of h/2 from x_n: x_{n+1} = 2y − x_n); TR-BDF2's two stages share one,
   // γh/2 = (1 − γ) h/(2 − γ) = (1 − 1/√2) h.
@@ -416,7 +414,7 @@ void ClothSimulator::step_projective(StepResult& r) {
                    : scheme == TimeScheme::midpoint ? 0.5 * dt
                    : scheme == TimeScheme::tr_bdf2  ? tr_h
                                                     : dt;
-  if (options_.projective.adaptive_weights) {
+  if (sim.options_.projective.adaptive_weights) {
     // Each stretch spring's weight is the law's tangent stiffness a little beyond its strain (the
     // iterations contract while the spring's stiffness stays below twice its weight): far below
     // the one weight for all (the tangent just below the knee), which is 10–100 times the
@@ -426,22 +424,22 @@ void ClothSimulator::step_projective(StepResult& r) {
     // headroom 0.05 and trigger 1.5 (5 refactorisations in 1 s); weights at the tangent itself
     // (headroom 0) or below it (0.7 × tangent) blew up with few iterations.
     const double headroom = 0.05, trigger = 1.5;
-    const SpringSet& s = model_.springs;
-    const double* x = x_.data();
+    const SpringSet& s = sim.model_.springs;
+    const double* x = sim.x_.data();
     auto strain_of = [&](const LocalSpring& q) {
       const double dx = x[q.j] - x[q.i], dy = x[q.j + n] - x[q.i + n],
                    dz = x[q.j + 2 * n] - x[q.i + 2 * n];
       return std::sqrt(dx * dx + dy * dy + dz * dz) * q.inv_L0 - 1.0;
     };
-    const bool have = projective_ && projective_->adaptive;
+    const bool have = current_ && current_->adaptive;
     // Has a stretch spring stiffened past its weight (checked by the first local step of every
     // minimisation, at the point the iterations start from)?
-    const bool raise = !have || projective_->worst > trigger;
+    const bool raise = !have || current_->worst > trigger;
     std::vector<double> weights;
     if (raise) {
       weights.resize(static_cast<std::size_t>(s.size()));
       for (int k = 0; k < s.size(); ++k) {
-        const LocalSpring q = have ? projective_->springs[k] : local_spring(s, k, 0.0);
+        const LocalSpring q = have ? current_->springs[k] : local_spring(s, k, 0.0);
         if (s.type[k] == SpringType::bending) {  // linear: its weight is its stiffness
           weights[k] = s.k_rest[k];
           continue;
@@ -450,20 +448,20 @@ void ClothSimulator::step_projective(StepResult& r) {
         weights[k] = have ? std::max(q.w, wanted) : wanted;
       }
     }
-    prepare_projective(h, raise ? &weights : nullptr);
+    prepare(sim, h, raise ? &weights : nullptr);
   } else {
-    prepare_projective(h);
+    prepare(sim, h);
   }
-  if (!projective_->ok) {
+  if (!current_->ok) {
     r.ok = false;
     r.failure = "projective dynamics: the global matrix could not be factorised";
     return;
   }
-  const Projective& P = *projective_;
-  P.x0 = x_, P.v0 = v_;
+  const ProjectiveFactor& P = *current_;
+  P.x0 = sim.x_, P.v0 = sim.v_;
   const Eigen::MatrixX3d &x0 = P.x0, &v0 = P.v0;
   RowX3& X = P.X;
-  Contacts contacts;
+  ClothSimulator::Contacts contacts;
   // x̂ and v̂ of the last stage: x_{n+1} = x̂ + h v_{n+1}
   Eigen::MatrixX3d &base = P.base, &vbase = P.vbase, &target = P.target, &y = P.y;
   base = x0, vbase = v0;
@@ -475,13 +473,13 @@ void ClothSimulator::step_projective(StepResult& r) {
     target = x0 + h * v0;
     X = target;
     r.newton_iterations +=
-        projective_solve(target, x0, wind_at(time_ + 0.5 * stage), x0, X, contacts);
+        solve(sim, target, x0, sim.wind_at(sim.time_ + 0.5 * stage), x0, X, contacts);
     y = X;
     base = 2.0 * y - x0;              // x at the stage's end
     vbase = 2.0 / h * (y - x0) - v0;  // v there
     if (scheme == TimeScheme::midpoint) {
-      x_ = base;
-      v_ = vbase;
+      sim.x_ = base;
+      sim.v_ = vbase;
     } else {
       // BDF2 over the rest of the step from (x_n, x_γ): x̂ = a x_γ − b x_n, a = 1/(γ(2 − γ)),
       // b = (1 − γ)²/(γ(2 − γ)), the same for v.
@@ -497,21 +495,21 @@ void ClothSimulator::step_projective(StepResult& r) {
   if (scheme != TimeScheme::midpoint) {
     target = base + h * vbase;  // the inertia target
     X = target;                 // start from it
-    r.newton_iterations += projective_solve(target, base, wind_at(time_ + dt), x0, X, contacts);
-    x_ = X;
-    v_ = (x_ - base) / h;
+    r.newton_iterations += solve(sim, target, base, sim.wind_at(sim.time_ + dt), x0, X, contacts);
+    sim.x_ = X;
+    sim.v_ = (sim.x_ - base) / h;
   }
   for (int v = 0; v < n; ++v)
-    if (pinned_[v]) x_.row(v) = x0.row(v), v_.row(v).setZero();
-  // Contacts: no inward speed; static or kinetic friction on the sliding part (as collide()). The
+    if (sim.pinned_[v]) sim.x_.row(v) = x0.row(v), sim.v_.row(v).setZero();
+  // Contacts: no inward speed; static or kinetic friction on the sliding part (as ClothSimulator::collide()). The
   // normal speed the contact removed is the contact force's impulse per mass (h g_n for a particle
   // resting under gravity), the last pass's push over h and any inward speed left.
   for (std::size_t k = 0; k < contacts.particle.size(); ++k) {
-    const Collider& col = options_.colliders[contacts.collider[k]];
+    const Collider& col = sim.options_.colliders[contacts.collider[k]];
     const Eigen::Vector3d& nk = contacts.normal[k];
-    Eigen::Vector3d vel = v_.row(contacts.particle[k]).transpose();
+    Eigen::Vector3d vel = sim.v_.row(contacts.particle[k]).transpose();
     const double vn = vel.dot(nk), removed = std::max(-vn, 0.0) + contacts.depth[k] / h +
-                              contact_forces_.force[contacts.particle[k]] * h / model_.mass(contacts.particle[k]);
+                              sim.contact_forces_.force[contacts.particle[k]] * h / sim.model_.mass(contacts.particle[k]);
     if (vn < 0.0) vel -= vn * nk;
     const Eigen::Vector3d vt = vel - vel.dot(nk) * nk;
     const double speed = vt.norm(),
@@ -520,8 +518,10 @@ void ClothSimulator::step_projective(StepResult& r) {
       vel -= vt;
     else
       vel -= (col.friction * removed / speed) * vt;
-    v_.row(contacts.particle[k]) = vel.transpose();
+    sim.v_.row(contacts.particle[k]) = vel.transpose();
   }
 }
+
+std::unique_ptr<TimeIntegrator> make_projective() { return std::make_unique<ProjectiveDynamics>(); }
 
 }  // namespace dresskit::cloth

@@ -12,6 +12,7 @@
 
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
+#include "integrator.h"
 #include "dresskit/cloth/stiffness_law.h"
 #include "dresskit/mesh/errors.h"
 #include "interleaved_cholesky.h"
@@ -216,7 +217,8 @@ inline LocalSpring local_spring(const SpringSet& s, int k, double w) {
 
 }  // namespace pd
 
-struct ClothSimulator::Projective {
+/// The factorised global matrix for one step size and set of pins, with the step's work arrays.
+struct ProjectiveFactor {
   double h = 0.0;  ///< the step in the matrix: dt, or 2 dt / 3 for BDF2
   bool single_precision = true;
   bool adaptive = false;  ///< weights from the springs' strains (projective_adaptive_weights)
@@ -243,6 +245,33 @@ struct ClothSimulator::Projective {
   detail::InterleavedCholesky<float> single;
   detail::InterleavedCholesky<double> full;
   bool ok = false;
+};
+
+/// Projective dynamics as a time integrator (projective.cpp; the L-BFGS solve in projective_lbfgs.cpp).
+class ProjectiveDynamics final : public TimeIntegrator {
+ public:
+  void step(ClothSimulator& sim, StepResult& r) override;
+  void restart() override { history_ = History{}; }
+
+ private:
+  /// The factorisation for step h (current_), from the cache or new.
+  void prepare(const ClothSimulator& sim, double h, const std::vector<double>* weights = nullptr);
+  int solve(ClothSimulator& sim, const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
+            const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0, pd::RowX3& X,
+            ClothSimulator::Contacts& contacts);
+  int lbfgs(const ClothSimulator& sim, const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
+            const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0, pd::RowX3& X);
+  /// Built at the first step and again when the step size or the pins change.
+  std::shared_ptr<ProjectiveFactor> current_;
+  /// The factorisations of up to four other step sizes, most recent first (adaptive steps, BDF2's
+  /// start-up); dropped when adaptive weights change the matrix.
+  std::vector<std::shared_ptr<ProjectiveFactor>> cache_;
+  /// BDF2's history: the state at the start of the step before (x_{n−1}, v_{n−1}) and at the start of
+  /// the last step tried, with their times; cleared by restart().
+  struct History {
+    Eigen::MatrixX3d x_prev, v_prev, x_start, v_start;
+    double t_prev = -1.0, t_start = -1.0;
+  } history_;
 };
 
 }  // namespace dresskit::cloth

@@ -21,25 +21,25 @@ using namespace pd;
 // direction −A⁻¹∇G is exactly a local/global iteration, so this is projective dynamics with the
 // curvature it misses (the softer-than-w springs of a lightly stretched cloth, the stiffer ones
 // past the knee) learnt from the last iterations.
-int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
-                                     const Eigen::MatrixX3d& air_base, const Eigen::Vector3d& wind,
-                                     const Eigen::MatrixX3d& x0, RowX3& X) {
-  const Projective& P = *projective_;
-  const double h = P.h, c = options_.air_damping;
-  const int n = static_cast<int>(x_.rows());
+int ProjectiveDynamics::lbfgs(const ClothSimulator& sim, const Eigen::MatrixX3d& target,
+                              const Eigen::MatrixX3d& air_base, const Eigen::Vector3d& wind,
+                              const Eigen::MatrixX3d& x0, RowX3& X) {
+  const ProjectiveFactor& P = *current_;
+  const double h = P.h, c = sim.options_.air_damping;
+  const int n = static_cast<int>(sim.x_.rows());
   // G(x) = Σ a/2 |x|² − b·x + E(x) (+ a constant) with a = m/h² + c m/h and
   // b = m/h² target + c m/h (air_base + h wind) + m g.
   RowX3 b(n, 3);
   for (int v = 0; v < n; ++v) {
-    const double m = model_.mass(v);
+    const double m = sim.model_.mass(v);
     b.row(v) = (m / (h * h)) * target.row(v) +
                (c * m / h) * (air_base.row(v) + h * wind.transpose()) +
-               m * options_.gravity.transpose();
-    if (pinned_[v]) X.row(v) = x0.row(v);
+               m * sim.options_.gravity.transpose();
+    if (sim.pinned_[v]) X.row(v) = x0.row(v);
   }
-  const double beyond = options_.dynamic_stiffness ? 1.0 + options_.strain_limit : HUGE_VAL;
-  const double* rest = model_.rest_positions.data();
-  const bool seams = model_.seams.size() > 0;
+  const double beyond = sim.options_.dynamic_stiffness ? 1.0 + sim.options_.strain_limit : HUGE_VAL;
+  const double* rest = sim.model_.rest_positions.data();
+  const bool seams = sim.model_.seams.size() > 0;
   auto energy_gradient = [&](const RowX3& Xc, RowX3& g) {
     const double* x = Xc.data();
     double* G = g.data();
@@ -81,21 +81,21 @@ int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
     if (seams) {
       const Eigen::MatrixX3d xs = Xc;
       Eigen::MatrixX3d f = Eigen::MatrixX3d::Zero(n, 3);
-      add_seam_forces(model_.seams, xs, f);
+      add_seam_forces(sim.model_.seams, xs, f);
       g -= f;
-      energy += seam_energy(model_.seams, xs);
+      energy += seam_energy(sim.model_.seams, xs);
     }
     for (int v : P.pinned_list) g.row(v).setZero();
     return energy;
   };
-  const int m = options_.projective.lbfgs_history;
+  const int m = sim.options_.projective.lbfgs_history;
   std::vector<RowX3> S(static_cast<std::size_t>(m)), Y(static_cast<std::size_t>(m));
   std::vector<double> inv_sy(static_cast<std::size_t>(m)), alpha(static_cast<std::size_t>(m));
   int stored = 0, newest = -1;
   RowX3 g(n, 3), g_new(n, 3), p(n, 3), X_new(n, 3);
   double G = energy_gradient(X, g);
   int iterations = 0;
-  for (int it = 0; it < options_.projective.iterations; ++it) {
+  for (int it = 0; it < sim.options_.projective.iterations; ++it) {
     // Two-loop recursion: p = −H ∇G with H the L-BFGS inverse Hessian around A⁻¹.
     p = -g;
     for (int k = 0; k < stored; ++k) {
@@ -148,7 +148,7 @@ int ClothSimulator::projective_lbfgs(const Eigen::MatrixX3d& target,
     X.swap(X_new);
     g.swap(g_new);
     G = G_new;
-    if (moved < options_.iteration_tolerance) break;
+    if (moved < sim.options_.iteration_tolerance) break;
   }
   return iterations;
 }

@@ -19,6 +19,7 @@
 #include "dresskit/cloth/spring_kernels.h"
 #include "dresskit/mesh/errors.h"
 #include "cpu_clock.h"
+#include "integrator.h"
 #include "simulator_internal.h"
 
 using namespace dresskit::mesh;
@@ -27,9 +28,26 @@ namespace dresskit::cloth {
 using detail::add_spring_blocks;
 using detail::row;
 
+namespace {
+std::unique_ptr<TimeIntegrator> make_integrator(Integrator kind) {
+  switch (kind) {
+    case Integrator::symplectic_euler: return make_symplectic_euler();
+    case Integrator::implicit_euler: return make_implicit_euler();
+    case Integrator::newton: return make_newton();
+    case Integrator::projective: return make_projective();
+  }
+  return make_projective();
+}
+}  // namespace
+
+ClothSimulator::~ClothSimulator() = default;
+ClothSimulator::ClothSimulator(ClothSimulator&&) noexcept = default;
+ClothSimulator& ClothSimulator::operator=(ClothSimulator&&) noexcept = default;
+
 ClothSimulator::ClothSimulator(ClothModel model, SimulationOptions options)
     : model_(std::move(model)), options_(options) {
   check_options(options_);
+  integrator_ = make_integrator(options_.integrator);
   x_ = model_.rest_positions;
   v_ = Eigen::MatrixX3d::Zero(x_.rows(), 3);
   if (model_.layer.size() != x_.rows()) model_.layer = Eigen::VectorXi::Zero(x_.rows());
@@ -134,7 +152,7 @@ void ClothSimulator::set_state(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d
   assert(x.rows() == x_.rows() && v.rows() == v_.rows());
   x_ = x;
   v_ = v;
-  history_ = History{};  // BDF2 must not reach back past a state set from outside
+  integrator_->restart();  // BDF2 must not reach back past a state set from outside
   contact_forces_ = ContactForces{};
   find_contacts();
   find_inside();
@@ -348,12 +366,7 @@ StepResult ClothSimulator::try_step(double dt) {
   using Clock = ThreadCpuClock;
   auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   auto t = Clock::now();
-  switch (options_.integrator) {
-    case Integrator::symplectic_euler: step_symplectic(r); break;
-    case Integrator::implicit_euler: step_implicit(r); break;
-    case Integrator::newton: step_newton(r); break;
-    case Integrator::projective: step_projective(r); break;
-  }
+  integrator_->step(*this, r);
   // Constraints, then collisions: the layer guard and the length limits move particles, the
   // collision projection last keeps every particle outside the colliders.
   r.integrate_seconds = since(t);

@@ -1,15 +1,20 @@
 // Symplectic (semi-implicit) Euler: velocities from the forces, then positions from the velocities.
-#include "dresskit/cloth/simulator.h"
+#include "integrator.h"
 
 namespace dresskit::cloth {
 
-void ClothSimulator::step_symplectic(StepResult&) {
-  const Eigen::MatrixX3d f = forces();
-  for (int i = 0; i < x_.rows(); ++i) {
-    if (pinned_[i]) continue;
-    v_.row(i) += dt_ / model_.mass(i) * f.row(i);
-    x_.row(i) += dt_ * v_.row(i);
+class SymplecticEuler final : public TimeIntegrator {
+ public:
+  void step(ClothSimulator& sim, StepResult&) override {
+    const Eigen::MatrixX3d f = sim.forces();
+    for (int i = 0; i < sim.x_.rows(); ++i) {
+      if (sim.pinned_[i]) continue;
+      sim.v_.row(i) += sim.dt_ / sim.model_.mass(i) * f.row(i);
+      sim.x_.row(i) += sim.dt_ * sim.v_.row(i);
+    }
   }
-}
+};
+
+std::unique_ptr<TimeIntegrator> make_symplectic_euler() { return std::make_unique<SymplecticEuler>(); }
 
 }  // namespace dresskit::cloth

@@ -1,8 +1,10 @@
 #pragma once
 // The spring-mass cloth simulator: state in arrays (#V×3 positions and velocities), a step that reads
-// as named phases (forces, solve, constraints), and three integrators: symplectic Euler, implicit
-// (backward) Euler with one sparse linear solve per step, and Newton's method with line search on
-// backward Euler's incremental potential (stiff-robust).
+// as named phases (integrator, constraints, sewing, collisions), and four time integrators behind
+// one interface (cloth/src/integrator.h), each in its own file with its own options: symplectic
+// Euler, implicit (backward) Euler with one sparse linear solve per step, Newton's method with line
+// search on backward Euler's incremental potential (stiff-robust), and projective dynamics (the
+// default).
 #include <Eigen/Sparse>
 #include <array>
 #include <memory>
@@ -182,9 +184,14 @@ struct SettleResult {
   std::vector<double> energy_history; ///< elastic energy samples [J]
 };
 
+class TimeIntegrator;
+
 class ClothSimulator {
  public:
   ClothSimulator(ClothModel model, SimulationOptions options);
+  ~ClothSimulator();
+  ClothSimulator(ClothSimulator&&) noexcept;
+  ClothSimulator& operator=(ClothSimulator&&) noexcept;
 
   /// Pinned vertices keep their positions exactly and have zero velocity.
   void set_pinned(const std::vector<int>& vertices);
@@ -231,16 +238,14 @@ class ClothSimulator {
   Eigen::SparseMatrix<double> stiffness_matrix(bool clamp_geometric) const;
 
  private:
+  // The integrators and the implicit system read and advance the state (cloth/src/integrator.h).
+  friend class SymplecticEuler;
+  friend class ImplicitEuler;
+  friend class Newton;
+  friend class ProjectiveDynamics;
+  friend class SystemMatrix;
+  std::unique_ptr<TimeIntegrator> integrator_;
   void add_spring_forces(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& v, Eigen::MatrixX3d& f) const;
-  void step_symplectic(StepResult& r);
-  void step_implicit(StepResult& r);
-  void step_newton(StepResult& r);
-  void step_projective(StepResult& r);
-  void assemble_system(bool with_spring_damping, Eigen::VectorXd* Kv);
-  bool solve_system(const Eigen::VectorXd& rhs, const Eigen::VectorXd& guess, Eigen::VectorXd& sol,
-                    StepResult& r);
-  double incremental_potential(const Eigen::MatrixX3d& x, const Eigen::MatrixX3d& x0,
-                               const Eigen::MatrixX3d& v0) const;
   /// all: look at every spring; false: only those with an end moved since the last call ended with
   /// every spring within its bounds. after_contact: a particle that a collider pass of this step
   /// pushed out slides along the collider's surface instead of being pulled back into it.
@@ -274,7 +279,6 @@ class ClothSimulator {
   /// inside there), else +∞ [m]; end_distance_: the same at the end of the last collider pass.
   Eigen::VectorXd start_distance_, end_distance_;
   void add_penalty_forces(Eigen::MatrixX3d& f) const;
-  void build_pattern();
   StepResult try_step(double dt);
   /// What a step changes and an undone step must put back.
   struct Snapshot;
@@ -309,14 +313,6 @@ class ClothSimulator {
   double dt_next_ = 0.0;  ///< adaptive stepping: the controller's next step [s] (0: not started)
   int calm_steps_ = 0;
   Eigen::VectorXd contact_length_;  ///< per particle: mean structural rest length [m] (step_bound)
-  /// The implicit system's matrix, its sparsity fixed at the first implicit step; each step writes
-  /// values through precomputed offsets instead of rebuilding it from triplets (which cost over half
-  /// of a step's time).
-  Eigen::SparseMatrix<double> system_;
-  std::vector<std::array<int, 12>> spring_offsets_;  ///< per spring: blocks ii, jj, ij, ji × 3 columns
-  std::vector<std::array<int, 3>> vertex_offsets_;   ///< per vertex: its diagonal block's 3 columns
-  std::vector<std::array<int, 27>> seam_offsets_;    ///< per stitch: blocks (a, b0, b1)² × 3 columns
-  Eigen::VectorXd previous_dv_;                      ///< warm start for conjugate gradient
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
   double deep_push_speed_ = 0.0;  ///< largest speed out of a collider for a particle that started inside [m/s]
@@ -335,13 +331,6 @@ class ClothSimulator {
   /// Per collider: each particle's position and distance at its last lookup in collide().
   std::vector<Eigen::MatrixX3d> lookup_x_;
   Eigen::MatrixXd lookup_d_;
-  /// Projective dynamics' prefactored global matrix, built at its first step and again when the
-  /// step size or the pins change (projective.cpp).
-  struct Projective;
-  std::shared_ptr<Projective> projective_;
-  /// The factorisations of up to four other step sizes, most recent first (adaptive steps, BDF2's
-  /// start-up); dropped when adaptive weights change the matrix.
-  std::vector<std::shared_ptr<Projective>> projective_cache_;
   /// Projective dynamics' contacts (projective.collisions): per particle the normal contact force
   /// [N] (0: none), its collider (−1: none) and its normal at the last pass, kept between steps.
   struct ContactForces {
@@ -355,21 +344,6 @@ class ClothSimulator {
     Contacts contacts;
     std::vector<char> sewn;
   };
-  /// BDF2's history: the state at the start of the step before (x_{n−1}, v_{n−1}) and at the start of
-  /// the last step tried, with their times; cleared by set_state.
-  struct History {
-    Eigen::MatrixX3d x_prev, v_prev, x_start, v_start;
-    double t_prev = -1.0, t_start = -1.0;
-  } history_;
-  /// Projective dynamics (projective.cpp): the factorisation for step h, one minimisation.
-  void prepare_projective(double h, const std::vector<double>* weights = nullptr);
-  int projective_solve(const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
-                       const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0,
-                       Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X,
-                       Contacts& contacts);
-  int projective_lbfgs(const Eigen::MatrixX3d& target, const Eigen::MatrixX3d& air_base,
-                       const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0,
-                       Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>& X);
 };
 
 }  // namespace dresskit::cloth
