@@ -1,6 +1,5 @@
 #include "dresskit/cloth/scene.h"
 
-#include <charconv>
 #include <cstdio>
 #include <cmath>
 #include <filesystem>
@@ -22,7 +21,6 @@ namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
-
 /// A number as a person writes it: 1e-07, 0.5, 1000.
 std::string compact(double v) {
   char buf[32];
@@ -107,7 +105,6 @@ ClothModel make_chain(const Reader& c, double scale, double total_mass) {
   m.mass = Eigen::VectorXd::Constant(n, total_mass / n);
   return m;
 }
-
 
 struct Garment {
   ClothModel model;

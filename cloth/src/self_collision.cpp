@@ -12,8 +12,6 @@
 #include "dresskit/cloth/geometry.h"
 #include "self_collision_internal.h"
 
-using namespace dresskit::mesh;
-
 namespace dresskit::cloth {
 
 EdgeList triangle_edges(const Eigen::MatrixX3i& F) {
@@ -500,7 +498,7 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   }
 
   // 3. Rigid impact zones.
-  UnionFind zones(nv);
+  mesh::UnionFind zones(nv);
   std::vector<char> in_zone(static_cast<std::size_t>(nv), 0);
   for (int pass = 0; pass < options_.zone_passes; ++pass) {
     refresh();
