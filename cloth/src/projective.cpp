@@ -307,6 +307,15 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
   const double beyond = sim.options_.dynamic_stiffness ? 1.0 + sim.options_.strain_limit : HUGE_VAL;
   const double* rest = sim.model_.rest_positions.data();
   int iterations = 0;
+  // The force left unbalanced at the start of the first and the last iteration: the largest row of
+  // b − A X over free particles [N] (the potential's gradient; free in the residual forms below).
+  auto unbalanced = [&](const double* R) {
+    double worst = 0.0;
+    for (int v = 0; v < n; ++v)
+      if (!sim.pinned_[v]) worst = std::max(worst, R[3 * v] * R[3 * v] + R[3 * v + 1] * R[3 * v + 1] + R[3 * v + 2] * R[3 * v + 2]);
+    return std::sqrt(worst);
+  };
+  force_start_ = force_end_ = -1.0;
   for (int it = 0; it < sim.options_.projective.iterations && fused; ++it) {
     double* R = rhs.data();
     const double* x = X.data();
@@ -326,6 +335,8 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
     local_step<true, false, true>(P.bend, x, rest, n, beyond, R);
     if (in_contact) add_contact_forces(R);
     for (int v : P.pinned_list) R[3 * v] = R[3 * v + 1] = R[3 * v + 2] = 0.0;
+    force_end_ = unbalanced(R);
+    if (it == 0) force_start_ = force_end_;
     previous = X;
     P.single.solve_in_place(R);
     X += rhs;
@@ -372,6 +383,8 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
         }
         R[3 * row] = r0, R[3 * row + 1] = r1, R[3 * row + 2] = r2;
       }
+      force_end_ = unbalanced(R);
+      if (it == 0) force_start_ = force_end_;
       P.single.solve_in_place(R);
       X += rhs;
     } else {
@@ -495,7 +508,14 @@ void ProjectiveDynamics::step(ClothSimulator& sim, StepResult& r) {
   if (scheme != TimeScheme::midpoint) {
     target = base + h * vbase;  // the inertia target
     X = target;                 // start from it
-    r.newton_iterations += solve(sim, target, base, sim.wind_at(sim.time_ + dt), x0, X, contacts);
+    const int iterations = solve(sim, target, base, sim.wind_at(sim.time_ + dt), x0, X, contacts);
+    r.newton_iterations += iterations;
+    const double weight = sim.model_.mass.maxCoeff() * sim.options_.gravity.norm();
+    if (force_end_ >= 0.0 && weight > 0.0) {
+      r.unbalanced_start = force_start_ / weight;
+      r.unbalanced_end = force_end_ / weight;
+      r.iterations_ran_out = iterations >= sim.options_.projective.iterations;
+    }
     sim.x_ = X;
     sim.v_ = (sim.x_ - base) / h;
   }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace dresskit::cloth {
 
@@ -13,6 +14,10 @@ void StepTotals::add(const StepResult& r) {
   tunnelling += r.tunnelling;
   deep_pushes += r.deep_pushes;
   held_steps += r.self.held;
+  if (r.unbalanced_end >= 0.5 && !r.iterations_ran_out) {
+    ++stuck_steps;
+    worst_stuck = std::max(worst_stuck, r.unbalanced_end);
+  }
   smallest_dt = smallest_dt > 0.0 ? std::min(smallest_dt, r.dt) : r.dt;
   self.proximity_pairs += r.self.proximity_pairs;
   self.repulsions += r.self.repulsions;
@@ -96,6 +101,16 @@ RunResult run(ClothSimulator& sim, const RunOptions& o, const std::function<void
     }
   }
   if (result.stopped_reason.empty()) result.stopped_reason = "duration reached";
+  const StepTotals& s = result.totals;
+  if (s.stuck_steps > 0 && 4 * s.stuck_steps >= s.steps) {
+    char line[320];
+    std::snprintf(line, sizeof line,
+                  "projective dynamics stopped moving with forces unbalanced in %d of %d steps (up to %.3g "
+                  "times a particle's weight): the cloth is held by the solver, not by its forces; its "
+                  "springs are too stiff for this step (use the implicit integrator with a smaller dt)",
+                  s.stuck_steps, s.steps, s.worst_stuck);
+    result.warnings.emplace_back(line);
+  }
   cloth_speeds(sim, result.mean_speed, result.max_speed);
   return result;
 }

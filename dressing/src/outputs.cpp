@@ -133,7 +133,9 @@ json report_json(const DressResult& r) {
                         {"step_retries", r.settle.totals.retries},
                         {"smallest_dt", r.settle.totals.smallest_dt},
                         {"at_rest_from_seconds", r.settle.rest_at >= 0.0 ? json(r.settle.rest_at) : json(nullptr)},
-                        {"mean_speed_at_end", r.settle.mean_speed}};
+                        {"mean_speed_at_end", r.settle.mean_speed},
+                        {"stuck_steps", r.settle.totals.stuck_steps},
+                        {"warnings", r.settle.warnings}};
   }
   return report;
 }

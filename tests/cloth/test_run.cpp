@@ -45,6 +45,39 @@ TEST(Run, StopsWhenTheClothIsAtRestAndSaysWhy) {
   EXPECT_GE(all.time(), 1.0 - 1e-9);
 }
 
+// A horizontal square hinged at two corners of one edge swings down. With springs 10⁴ times stiffer
+// than a real fabric's, projective dynamics' iterations stop moving at once while gravity is still
+// unbalanced, and the run "comes to rest" in mid-air: it must say so in a warning. The real fabric
+// and the stiffer one 100 times stiffer swing without one.
+TEST(Run, WarnsWhenProjectiveDynamicsHoldsTheClothInsteadOfItsForces) {
+  const int n = 21;
+  auto hinged = [&](double scale, int& stuck, double& lowest) {
+    Fabric fabric = fabric_by_name("ivory-rib-knit");
+    fabric.stretching *= scale;
+    ClothSimulator sim(build_cloth(make_grid({1.0, 1.0}, {n, n}, {0, 1, 0}, {0, 1, 0}), fabric), SimulationOptions{});
+    sim.set_pinned({0, n - 1});
+    RunOptions r;
+    r.duration = 1.0;
+    const RunResult result = run(sim, r);
+    EXPECT_TRUE(result.ok) << result.failure;
+    stuck = result.totals.stuck_steps;
+    lowest = sim.positions().col(1).minCoeff();
+    return result.warnings;
+  };
+  int stuck = 0;
+  double lowest = 0.0;
+  const std::vector<std::string> frozen = hinged(1e4, stuck, lowest);
+  EXPECT_GT(lowest, 0.99);  // held in mid-air: what the warning is for
+  ASSERT_EQ(frozen.size(), 1u);
+  EXPECT_NE(frozen[0].find("held by the solver"), std::string::npos) << frozen[0];
+  EXPECT_GT(stuck, 0);
+  for (double scale : {1.0, 1e2}) {
+    EXPECT_TRUE(hinged(scale, stuck, lowest).empty()) << scale;
+    EXPECT_EQ(stuck, 0) << scale;
+    EXPECT_LT(lowest, 0.8) << scale;  // it swung down
+  }
+}
+
 // A run whose steps stay near the simulator's smallest step fails as stalled after the set number
 // of steps, saying so, instead of taking hours of such steps; with the check off it runs its time.
 TEST(Run, StopsAndFailsWhenItsStepsStayNearTheSmallest) {

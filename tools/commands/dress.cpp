@@ -131,6 +131,7 @@ int DressCommand::run() {
               << write_failure_page(dir, r, "dress", inputs) << ")\n";
     return static_cast<int>(ExitCode::simulation_failed);
   }
+  for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: " << body << ": warning: " << w << "\n";
   write_folder(
       dir,
       [&](const fs::path& folder) {

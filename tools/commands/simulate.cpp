@@ -195,6 +195,8 @@ int SimulateCommand::simulate_into(const ClothScene& s, const fs::path& out) con
       {"final_residual", sim.static_residual()},
       {"closest_collider_distance_m", std::isfinite(closest) ? json(closest) : json(nullptr)},
       {"stopped_reason", result.stopped_reason},
+      {"stuck_steps", tot.stuck_steps},
+      {"warnings", result.warnings},
       {"rest", {{"stop_at_rest", s.run.rest.enabled},
                 {"mean_speed_threshold", s.run.rest.mean_speed},
                 {"max_speed_threshold", s.run.rest.max_speed},
@@ -253,6 +255,7 @@ int SimulateCommand::simulate_into(const ClothScene& s, const fs::path& out) con
                     simulate_page(scene, s, start, sim.positions(), result, report));
   std::cout << "simulated " << tot.steps << " steps (" << result.frames << " frames, " << sim.time() << " s) in "
             << wall << " s; max strain " << sim.max_strain() << "; " << result.stopped_reason << "\n";
+  for (const std::string& w : result.warnings) std::cerr << "dress-a-mesh: " << scene << ": warning: " << w << "\n";
   if (!result.ok) {
     std::cerr << "dress-a-mesh: " << scene << ": simulation stopped after " << tot.steps
               << " steps: " << result.failure << " (last good state written)\n";

@@ -4,6 +4,7 @@
 // demo's dressing and the benches call it).
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "dresskit/cloth/simulator.h"
 
@@ -46,6 +47,12 @@ struct RunOptions {
 struct StepTotals {
   int steps = 0, retries = 0, cg_iterations = 0, collisions = 0, tunnelling = 0, deep_pushes = 0;
   int held_steps = 0;  ///< steps whose cloth–cloth pass held every particle (its last resort)
+  /// Projective dynamics: steps whose iterations stopped moving (SimulationOptions::
+  /// iteration_tolerance) while a free particle still had at least half the heaviest particle's
+  /// weight unbalanced: the solver, not the forces, held the cloth (springs too stiff for the
+  /// step), and the largest such unbalanced force over that weight [unitless].
+  int stuck_steps = 0;
+  double worst_stuck = 0.0;
   double smallest_dt = 0.0;  ///< [s] (0 before any step)
   SelfCollisionResult self;  ///< summed over the steps
   double force_seconds = 0, integrate_seconds = 0, constraint_seconds = 0, seam_seconds = 0,
@@ -62,6 +69,10 @@ struct RunResult {
   double rest_at = -1.0;       ///< simulated time the cloth came to rest [s] (−1: it did not)
   double mean_speed = 0.0, max_speed = 0.0;  ///< at the end [m/s]
   StepTotals totals;
+  /// What the caller should tell the user although the run succeeded (one line each): a quarter or
+  /// more of the steps stuck (StepTotals::stuck_steps), so "at rest" or the end shape is the
+  /// solver's doing.
+  std::vector<std::string> warnings;
 };
 
 /// RMS speed √(2 E_kin / M) and fastest free particle of the simulator's state [m/s].
