@@ -59,6 +59,10 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
       }
       if (sim.time() >= options.max_seconds) break;
     }
+    if (r.steps >= options.max_steps) {
+      r.stopped = "step limit";
+      break;
+    }
   }
   r.sewn = sim.positions();
   r.simulated_seconds = sim.time();

@@ -27,6 +27,9 @@ struct SewOptions {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
   double air_damping = 2.0;  ///< [1/s], damps the seams' pull so that panels do not overshoot
   double max_seconds = 2.0;  ///< simulated time at most [s]
+  /// Steps at most: where seams cannot close the adaptive step shrinks, and this bounds the time
+  /// spent (600: two and a half times the steps of max_seconds at the simulator's full 1/120 s).
+  int max_steps = 600;
   /// The simulator's adaptive step (SimulationOptions::max_strain_change): while seams pull edges
   /// across the body, strain changes fast by design, and the default 0.05 shrank the step to
   /// 3e-5 s; at 1 the step stays at 1/120 s and strain limiting keeps the fabric within 10 %.
@@ -38,16 +41,16 @@ struct SewOptions {
 };
 
 struct SewResult {
-  bool closed = false;     ///< every stitch pair within the tolerance
-  int stitch_pairs = 0;    ///< matching point pairs sewn
+  bool closed = false;   ///< every stitch pair within the tolerance
+  int stitch_pairs = 0;  ///< matching point pairs sewn
   int closed_pairs = 0;
-  double max_gap = 0.0;   ///< largest stitch pair distance at the end [m]
-  double mean_gap = 0.0;  ///< [m]
+  double max_gap = 0.0;            ///< largest stitch pair distance at the end [m]
+  double mean_gap = 0.0;           ///< [m]
   std::vector<double> stitch_gap;  ///< per stitch of the pattern, its largest pair distance [m]
   int steps = 0;
   double simulated_seconds = 0.0;
   double seconds = 0.0;   ///< wall-clock, the body's distance field included
-  std::string stopped;    ///< "closed", "time limit" or the simulator's failure
+  std::string stopped;    ///< "closed", "time limit", "step limit" or the simulator's failure
   Eigen::MatrixX3d sewn;  ///< #V×3 every cut vertex at the end (CutPattern's order) [m]
   /// The welded garment [m]: closed pairs joined into single vertices, faces turning as cut;
   /// labels: the panel of each vertex (label_names: the panel names).
