@@ -12,6 +12,7 @@
 #include "commands/demo.h"
 #include "commands/dress.h"
 #include "commands/info.h"
+#include "commands/pattern.h"
 #include "commands/segment.h"
 #include "commands/simulate.h"
 #include "commands/thickness.h"
@@ -43,6 +44,7 @@ int main(int argc, char** argv) {
   commands.push_back(std::make_unique<cli::AlignCommand>());
   commands.push_back(std::make_unique<cli::SimulateCommand>());
   commands.push_back(std::make_unique<cli::ThicknessCommand>());
+  commands.push_back(std::make_unique<cli::PatternCommand>());
   for (const auto& c : commands) c->add_to(app);
 
   try {

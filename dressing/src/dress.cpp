@@ -22,6 +22,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/thickness/thickness.h"
 #include "garments.h"
+#include "pattern_garment.h"
 
 using namespace dresskit::alignment;
 using namespace dresskit::cloth;
@@ -246,7 +247,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         if (other.name == d.name)
           throw InputError(g.file.path + ": another garment is called " + d.name + "; outputs are named by it");
       d.fabric = g.fabric.empty() ? "gray-interlock" : g.fabric;
-      d.mesh = load(g.file);
+      if (is_pattern_garment(g))
+        sew_pattern_garment(g, result.body, options, d);  // a sewing pattern: cut, sewn, welded
+      else
+        d.mesh = load(g.file);
       result.garments.push_back(std::move(d));
     }
     const int files = !body_file.mesh + static_cast<int>(std::count_if(garment_files.begin(), garment_files.end(),
@@ -549,6 +553,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);
     g.inside_dressed = surface_fit(g.dressed, inside).inside;
     g.max_strain_dressed = max_structural_strain(build_cloth(rest_shape(g), fabrics[k]), g.dressed);
+    if (g.from_pattern && result.settled) measure_dressed_panels(g);
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];
     const Gap gap = layer_gap(g.dressed, inner.dressed, inner.mesh.F, 0.02);

@@ -26,7 +26,7 @@ namespace {
 TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
   TriangleMesh result;
   const TriangleMesh& mesh = g.mesh;
-  const TriangleMesh original = g.in_memory ? *g.file.mesh : load_mesh(g.file.path, g.file.load);
+  const TriangleMesh original = g.in_memory ? *g.file.mesh : g.from_pattern ? g.mesh : load_mesh(g.file.path, g.file.load);
   int count = original.num_vertices();
   for (Eigen::Index i = 0; i < mesh.source_vertex.size(); ++i) count = std::max(count, mesh.source_vertex(i) + 1);
   Eigen::MatrixX3d out = Eigen::MatrixX3d::Zero(count, 3);
@@ -90,6 +90,27 @@ const char* labels_source(bool given, const MeshFile& file) {
   return !given ? "segmentation" : file.labels.empty() ? "given with the mesh" : "file";
 }
 
+/// A garment sewn from a pattern: its seams when sewing stopped, its panels' areas flat and
+/// dressed, and how long cutting and sewing took.
+json pattern_json(const SewnPattern& p) {
+  json panels = json::array();
+  for (std::size_t k = 0; k < p.panels.size(); ++k) {
+    const bool dressed = k < p.panel_area_dressed.size();
+    panels.push_back({{"name", p.panels[k]},
+                      {"area_m2", p.panel_area[k]},
+                      {"area_dressed_m2", dressed ? json(p.panel_area_dressed[k]) : json(nullptr)},
+                      {"area_change", dressed ? json(p.panel_area_dressed[k] / p.panel_area[k] - 1.0) : json(nullptr)}});
+  }
+  return {{"seams", {{"count", p.stitches}, {"pairs", p.stitch_pairs}, {"max_gap_m", p.max_gap}, {"closed", p.closed}}},
+          {"panels", panels},
+          {"pattern",
+           {{"triangles", p.triangles},
+            {"cut_seconds", p.cut_seconds},
+            {"sew_seconds", p.sew_seconds},
+            {"sew_simulated_seconds", p.sew_simulated},
+            {"warnings", p.warnings}}}};
+}
+
 json report_json(const DressResult& r) {
   json garments = json::array();
   for (const DressedGarment& g : r.garments) {
@@ -110,6 +131,7 @@ json report_json(const DressResult& r) {
          {"max_strain", g.max_strain_dressed},
          {"waistband_vertices", g.waistband_vertices},
          {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
+    if (g.from_pattern) garments.back().update(pattern_json(g.pattern));
   }
   json gaps = json::array();
   for (std::size_t k = 0; k < r.layer_gap_median.size(); ++k)

@@ -26,7 +26,9 @@ void DressCommand::add_to(CLI::App& app) {
                                         "settle; writes report.json, dressed.glb and each garment placed "
                                         "and dressed (docs/dressing.md)");
   command->add_option("BODY", body, "body mesh")->required();
-  command->add_option("GARMENT", garments, "garment meshes, inside to outside")->required();
+  command->add_option("GARMENT", garments,
+                      "garment meshes or sewing patterns (GarmentCode .json, docs/pattern.md), inside to outside")
+      ->required();
   command->add_option("-o,--output", dir, "output directory")->required();
   command->add_option("--units", units, "length unit of every input: m, dm, cm, mm or metres per unit");
   command->add_option("--body-units", body_units, "length unit of BODY (overrides --units)");
@@ -121,6 +123,8 @@ int DressCommand::run() {
   show_progress("dress", options, progress);
   DressResult r = dress(body_file, garment_files, options);
   progress.finish();
+  for (const DressedGarment& g : r.garments)
+    for (const std::string& w : g.pattern.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   std::string report;
   std::vector<std::string> inputs = garments;
   inputs.push_back(body);
@@ -146,7 +150,11 @@ int DressCommand::run() {
     for (const DressedGarment& g : r.garments) {
       std::cout << g.name << ": " << (g.placed_by_placement ? "placed" : "already on the body") << ", "
                 << g.crossings_dressed << " crossings, " << g.inside_dressed << " vertices inside, largest strain "
-                << g.max_strain_dressed << "\n";
+                << g.max_strain_dressed;
+      if (g.from_pattern)
+        std::cout << ", sewn from " << g.pattern.panels.size() << " panels (" << g.pattern.stitches
+                  << " seams, largest gap " << 1e3 * g.pattern.max_gap << " mm)";
+      std::cout << "\n";
     }
     std::cout << "wrote " << dir << " in " << json::parse(report)["seconds"].get<double>() << " s\n";
   }

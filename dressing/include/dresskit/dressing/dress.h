@@ -50,6 +50,9 @@ struct GarmentFile {
 
 struct DressOptions {
   DressQuality quality = DressQuality::fast;
+  /// Garments given as sewing patterns (.json, docs/pattern.md) are cut into triangles of this edge
+  /// length [m], and their stitches are closed to `seam_tolerance` [m] before settling.
+  double pattern_edge_length = 0.02, seam_tolerance = 0.001;
   bool settle = true;  ///< false: stop after placement (dressed = placed)
   /// Simulated time settling takes at most [s]; 0 = the quality's (0.5, 1 or 2 s).
   double settle_seconds = 0.0;
@@ -86,6 +89,25 @@ struct DressPart {
   int vertices = 0;
 };
 
+/// A garment sewn from a sewing pattern: what cutting and sewing did, and its panels' areas.
+struct SewnPattern {
+  std::vector<std::string> panels;             ///< panel names, in the pattern's order
+  std::vector<double> panel_area;              ///< each panel's area flat [m²]
+  std::vector<double> panel_area_dressed;      ///< the same dressed (empty without settling) [m²]
+  /// The panels' triangles as cut, in the garment's vertex indices (a seam's two sides share
+  /// vertices), and each one's panel: areas per panel at any positions.
+  Eigen::MatrixX3i panel_faces;
+  Eigen::VectorXi panel_of_face;
+  int stitches = 0;        ///< the pattern's stitches (seams, darts, pleats)
+  int stitch_pairs = 0;    ///< matching point pairs sewn
+  double max_gap = 0.0;    ///< largest stitch pair distance when sewing stopped (then welded) [m]
+  bool closed = false;     ///< every pair within DressOptions::seam_tolerance
+  int triangles = 0;
+  double cut_seconds = 0.0, sew_seconds = 0.0;  ///< wall-clock
+  double sew_simulated = 0.0;                   ///< simulated time sewing took [s]
+  std::vector<std::string> warnings;            ///< stitched edges of unequal lengths
+};
+
 struct DressedGarment {
   std::string name;    ///< the file's stem, or the name of a mesh given in memory; unique
   std::string fabric;
@@ -105,6 +127,8 @@ struct DressedGarment {
   int inside_placed = 0, inside_dressed = 0;  ///< vertices deeper than 2 mm inside the body
   double max_strain_dressed = 0.0;    ///< largest structural strain against the rest shape
   int waistband_vertices = 0;         ///< vertices held as its waistband while settling
+  bool from_pattern = false;          ///< sewn from a pattern file (then `pattern` says how)
+  SewnPattern pattern;
 };
 
 struct DressResult {

@@ -1,0 +1,84 @@
+// `dress-a-mesh pattern` end to end: outputs, and bad input as one line, exit 2, nothing written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "dresskit/mesh/io.h"
+#include "pattern_fixtures.h"
+#include "tools/cli_run.h"
+
+using namespace dresskit::mesh;
+
+namespace dresskit {
+namespace {
+using namespace dresskit::test::cli;
+namespace fs = std::filesystem;
+
+TEST(PatternCli, WritesPictureMeshesAndSummary) {
+  DRESSKIT_REQUIRE_DATA();
+  test::TempDir dir;
+  const std::string out = dir.file("shirt");
+  const CliRun r = run(dir, "pattern " + test::shared_pattern("gc_shirt_mean_specification.json") +
+                                " -o " + out + " --edge 0.03 --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["panels"].size(), 8u);
+  EXPECT_EQ(j["stitches"], 18);
+  for (const char* f : {"pattern.svg", "pattern.json", "gc_shirt_mean_specification.flat.obj",
+                        "gc_shirt_mean_specification.placed.obj"})
+    EXPECT_TRUE(fs::exists(out + "/" + f)) << f;
+  const TriangleMesh placed = load_mesh(out + "/gc_shirt_mean_specification.placed.obj");
+  EXPECT_EQ(placed.num_faces(), j["triangles"].get<int>());
+  // The shirt placed around the body: between the hips and the shoulders of a 1.7 m body [m].
+  const Eigen::AlignedBox3d box = bounding_box(placed);
+  EXPECT_GT(box.min().y(), 0.6);
+  EXPECT_LT(box.max().y(), 1.6);
+  double area = 0.0;
+  for (const auto& panel : j["panels"]) {
+    area += panel["area_m2"].get<double>();
+    EXPECT_NEAR(panel["triangle_area_m2"].get<double>(), panel["area_m2"].get<double>(),
+                0.005 * panel["area_m2"].get<double>());
+  }
+  EXPECT_GT(area, 0.5);  // a short-sleeved shirt for an adult: 0.64 m² of fabric
+  EXPECT_LT(area, 0.8);
+}
+
+TEST(PatternCli, BadPatternOneLineExit2NothingWritten) {
+  test::TempDir dir;
+  std::string text =
+      test::two_panel_pattern("{\"endpoints\": [1, 2]}",
+                              R"([[{"panel": "front", "edge": 1}, {"panel": "back", "edge": 9}]])");
+  write(dir.file("bad.json"), text);
+  const std::string out = dir.file("out");
+  const CliRun r = run(dir, "pattern " + dir.file("bad.json") + " -o " + out);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("bad.json: stitch 0: panel 'back' has no edge 9"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  // No units: named, exit 2.
+  write(dir.file("nounits.json"), test::two_panel_pattern("{\"endpoints\": [1, 2]}", "[]",
+                                                          R"({"curvature_coords": "relative"})"));
+  const CliRun u = run(dir, "pattern " + dir.file("nounits.json") + " -o " + out);
+  EXPECT_EQ(u.code, 2);
+  EXPECT_NE(u.err.find("units_in_meter"), std::string::npos) << u.err;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(PatternCli, UnequalStitchWarnsAndStillCuts) {
+  test::TempDir dir;
+  write(
+      dir.file("warn.json"),
+      test::two_panel_pattern(
+          R"({"endpoints": [1, 2], "curvature": {"type": "cubic", "params": [[0.3, 0.25], [0.7, 0.25]]}})"));
+  const CliRun r = run(dir, "pattern " + dir.file("warn.json") + " -o " + dir.file("out"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("warning: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("panel 'front' edge 1"), std::string::npos) << r.err;
+  EXPECT_TRUE(fs::exists(dir.file("out") + "/pattern.svg"));
+}
+
+}  // namespace
+}  // namespace dresskit

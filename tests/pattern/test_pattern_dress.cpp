@@ -1,0 +1,150 @@
+// The shared patterns sewn and dressed on gc_mean_all: stitches closed, nothing inside the body
+// (checked by winding numbers, independently of the simulator's distance field), no crossings, the
+// garment worn rather than hanging in the air, panel areas kept.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "dresskit/cloth/self_collision.h"
+#include "dresskit/dressing/dress.h"
+#include "dresskit/mesh/io.h"
+#include "dresskit/testing/winding_number.h"
+#include "pattern_fixtures.h"
+#include "tools/cli_run.h"
+
+using namespace dresskit::cloth;
+using namespace dresskit::dressing;
+using namespace dresskit::mesh;
+
+namespace dresskit {
+namespace {
+
+/// Distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
+double point_triangle_distance(const Eigen::Vector3d& p, const Eigen::Vector3d& a,
+                               const Eigen::Vector3d& b, const Eigen::Vector3d& c) {
+  const Eigen::Vector3d ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = ab.dot(ap), d2 = ac.dot(ap);
+  if (d1 <= 0 && d2 <= 0) return ap.norm();
+  const Eigen::Vector3d bp = p - b;
+  const double d3 = ab.dot(bp), d4 = ac.dot(bp);
+  if (d3 >= 0 && d4 <= d3) return bp.norm();
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return (p - (a + d1 / (d1 - d3) * ab)).norm();
+  const Eigen::Vector3d cp = p - c;
+  const double d5 = ab.dot(cp), d6 = ac.dot(cp);
+  if (d6 >= 0 && d5 <= d6) return cp.norm();
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return (p - (a + d2 / (d2 - d6) * ac)).norm();
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
+    return (p - (b + (d4 - d3) / ((d4 - d3) + (d5 - d6)) * (c - b))).norm();
+  const double denom = 1.0 / (va + vb + vc);
+  return (p - (a + ab * (vb * denom) + ac * (vc * denom))).norm();
+}
+
+double distance_to(const TriangleMesh& m, const Eigen::Vector3d& p) {
+  double best = 1e30;
+  for (int f = 0; f < m.num_faces(); ++f)
+    best = std::min(best, point_triangle_distance(p, m.V.row(m.F(f, 0)), m.V.row(m.F(f, 1)),
+                                                  m.V.row(m.F(f, 2))));
+  return best;
+}
+
+struct Worn {
+  int deep_inside = 0;         ///< vertices deeper than 2 mm inside the body
+  double near_fraction = 0.0;  ///< of vertices within 8 cm of the body
+};
+
+/// Independent of the toolkit's distance fields: a vertex is inside when its winding number with
+/// respect to the body is above one half; its depth is its distance to the body's triangles by
+/// brute force. Nearness: brute force distance on a subsample of every 7th vertex.
+Worn worn(const TriangleMesh& body, const Eigen::MatrixX3d& x) {
+  Worn w;
+  int near = 0, sampled = 0;
+  for (Eigen::Index i = 0; i < x.rows(); ++i) {
+    const Eigen::Vector3d p = x.row(i).transpose();
+    if (std::abs(test::winding_number(body, p)) > 0.5 && distance_to(body, p) > 0.002)
+      ++w.deep_inside;
+    if (i % 7 == 0) {
+      ++sampled;
+      near += distance_to(body, p) <= 0.08;
+    }
+  }
+  w.near_fraction = double(near) / sampled;
+  return w;
+}
+
+class PatternDress : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
+  DRESSKIT_REQUIRE_DATA();
+  const std::string body_path = test::data_dir() + "/bodies/gc_mean_all.obj";
+  GarmentFile g;
+  g.file = MeshFile::file(test::shared_pattern(GetParam()));
+  const DressResult r = dress(MeshFile::file(body_path), {g});
+  ASSERT_EQ(r.garments.size(), 1u);
+  const DressedGarment& d = r.garments[0];
+  ASSERT_TRUE(d.from_pattern);
+  ASSERT_TRUE(r.settled);
+  EXPECT_TRUE(r.settle.ok) << r.settle.failure;
+  // Every stitch pair was closed to 1 mm, then welded.
+  EXPECT_TRUE(d.pattern.closed);
+  EXPECT_LE(d.pattern.max_gap, 0.001);
+  EXPECT_GT(d.pattern.stitch_pairs, 100);
+  // Worn: nothing deeper than 2 mm in the body, ≥ 95 % of the garment within 8 cm of it.
+  const Worn w = worn(r.body, d.dressed);
+  EXPECT_EQ(w.deep_inside, 0) << GetParam();
+  EXPECT_GE(w.near_fraction, 0.95) << GetParam();
+  // No triangle pair of the garment crosses another.
+  EXPECT_EQ(count_intersections(d.dressed, d.mesh.F), 0) << GetParam();
+  // Panel areas within 3 % of the flat pattern's.
+  ASSERT_EQ(d.pattern.panel_area_dressed.size(), d.pattern.panels.size());
+  for (std::size_t k = 0; k < d.pattern.panels.size(); ++k)
+    EXPECT_NEAR(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k], 1.0, 0.03)
+        << GetParam() << " " << d.pattern.panels[k];
+}
+
+// The shared hoody on its body. (The shirt and the pencil dress do not close all their seams within
+// the sewing time yet: docs/pattern.md, Limits.)
+INSTANTIATE_TEST_SUITE_P(Shared, PatternDress,
+                         ::testing::Values("gc_hoody_mean_specification.json"),
+                         [](const auto&) { return std::string("hoody"); });
+
+TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
+  DRESSKIT_REQUIRE_DATA();
+  using namespace test::cli;
+  test::TempDir dir;
+  const std::string out = dir.file("hoody");
+  const CliRun r = run(dir, "dress " + test::data_dir() + "/bodies/gc_mean_all.obj " +
+                                test::shared_pattern("gc_hoody_mean_specification.json") + " -o " +
+                                out + " --json");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string stem = "gc_hoody_mean_specification";
+  for (const std::string& f : {stem + ".dressed.obj", stem + ".placed.obj",
+                               std::string("dressed.glb"), std::string("report.json")})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + f)) << f;
+  const auto j = nlohmann::json::parse(slurp(out + "/report.json"));
+  const auto& g = j["garments"][0];
+  EXPECT_EQ(g["name"], stem);
+  EXPECT_EQ(g["seams"]["count"], 12);
+  EXPECT_LE(g["seams"]["max_gap_m"].get<double>(), 0.001);
+  EXPECT_EQ(g["panels"].size(), 6u);
+  EXPECT_EQ(g["panels"][0]["name"], "left_btorso");
+  const TriangleMesh dressed = load_mesh(out + "/" + stem + ".dressed.obj");
+  EXPECT_EQ(dressed.num_faces(), g["pattern"]["triangles"].get<int>());
+  // A bad pattern: exit 2, one line naming the stitch, nothing written.
+  write(dir.file("bad.json"),
+        test::two_panel_pattern(
+            "{\"endpoints\": [1, 2]}",
+            R"([[{"panel": "front", "edge": 1}, {"panel": "cuff", "edge": 0}]])"));
+  const CliRun bad = run(dir, "dress " + test::data_dir() + "/bodies/gc_mean_all.obj " +
+                                  dir.file("bad.json") + " -o " + dir.file("bad_out"));
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_NE(bad.err.find("stitch 0: panel 'cuff' does not exist"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad_out")));
+}
+
+}  // namespace
+}  // namespace dresskit
