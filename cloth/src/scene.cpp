@@ -17,7 +17,6 @@ using namespace dresskit::mesh;
 using namespace dresskit::thickness;
 
 namespace dresskit::cloth {
-namespace fs = std::filesystem;
 using json = nlohmann::json;
 
 namespace {
@@ -294,7 +293,7 @@ LayerThickness read_thickness(const Reader& cloth, const Fabric& fabric) {
   }
 }
 
-Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) {
+Garment read_garment(const Reader& cloth, const std::filesystem::path& folder, double scale) {
   cloth.allow({"grid", "panels", "mesh", "chain", "fabric", "fabric_file", "pins", "pin_motion", "total_mass",
                "warp", "bending_springs", "stiffness", "thickness", "seams"});
   Garment garment;
@@ -403,7 +402,7 @@ Garment read_garment(const Reader& cloth, const fs::path& folder, double scale) 
 
 /// A body mesh collider: the mesh in its own units (default: the scene's) and up axis, moved by
 /// translate (scene units), with its signed distance grid (cell and band in the scene's units).
-Collider read_mesh_collider(const Reader& c, const fs::path& folder, double scale) {
+Collider read_mesh_collider(const Reader& c, const std::filesystem::path& folder, double scale) {
   LoadOptions load;
   load.units.metres_per_unit = scale;
   if (c.has("units")) {
@@ -450,7 +449,7 @@ ClothScene load_cloth_scene(const std::string& path) {
   }
   const Reader root(path, j, "");
   root.allow({"units", "cloth", "cloths", "colliders", "simulation"});
-  const fs::path folder = fs::path(path).parent_path();
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
   double scale = 1.0;
   if (root.has("units")) {
     scale = root.at("units").is_number() ? root.number("units", 1.0, 1e-12, 1e12)

@@ -121,20 +121,15 @@ TEST(PatternReader, MissingUnitsNamed) {
   EXPECT_EQ(e.find('\n'), std::string::npos) << "one line";
 }
 
-TEST(PatternReader, StitchToMissingPanelNamed) {
-  const std::string e = error_of(test::two_panel_pattern(
-      "{\"endpoints\": [1, 2]}",
-      R"([[{"panel": "front", "edge": 1}, {"panel": "sleeve", "edge": 3}]])"));
-  EXPECT_NE(e.find("stitch 0"), std::string::npos) << e;
-  EXPECT_NE(e.find("'sleeve' does not exist"), std::string::npos) << e;
-}
-
-TEST(PatternReader, StitchToMissingEdgeNamed) {
-  const std::string e = error_of(test::two_panel_pattern(
-      "{\"endpoints\": [1, 2]}",
-      R"([[{"panel": "front", "edge": 1}, {"panel": "back", "edge": 7}]])"));
-  EXPECT_NE(e.find("stitch 0"), std::string::npos) << e;
-  EXPECT_NE(e.find("panel 'back' has no edge 7"), std::string::npos) << e;
+TEST(PatternReader, StitchToMissingPanelOrEdgeNamed) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"([[{"panel": "front", "edge": 1}, {"panel": "sleeve", "edge": 3}]])", "'sleeve' does not exist"},
+      {R"([[{"panel": "front", "edge": 1}, {"panel": "back", "edge": 7}]])", "panel 'back' has no edge 7"}};
+  for (const auto& [stitches, expected] : cases) {
+    const std::string e = error_of(test::two_panel_pattern("{\"endpoints\": [1, 2]}", stitches));
+    EXPECT_NE(e.find("stitch 0"), std::string::npos) << e;
+    EXPECT_NE(e.find(expected), std::string::npos) << e;
+  }
 }
 
 TEST(PatternReader, ZeroLengthEdgeNamed) {

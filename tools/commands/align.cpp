@@ -11,14 +11,8 @@
 #include "common/output_folder.h"
 #include "dresskit/mesh/io.h"
 
-using namespace dresskit::alignment;
-using namespace dresskit::mesh;
-
 namespace dresskit::cli {
 namespace {
-
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 json matrix_json(const Eigen::Matrix4d& T) {
   json rows = json::array();
@@ -79,8 +73,7 @@ void AlignCommand::add_to(CLI::App& app) {
                       "length unit of SOURCE (overrides --units)");
   command->add_option("--target-units,--body-units", target_units,
                       "length unit of TARGET (overrides --units)");
-  command->add_option("--up", up, "up axis of both inputs: +x, -x, +y, -y, +z, -z")
-      ->capture_default_str();
+  option_with_default(command, "--up", up, "up axis of both inputs: +x, -x, +y, -y, +z, -z");
   command->add_flag("--scale", with_scale,
                     "--rigid: also estimate a uniform scale (similarity transform)");
   command->add_flag("--local", local,
@@ -88,10 +81,8 @@ void AlignCommand::add_to(CLI::App& app) {
   command->add_option("--max-iterations", global.icp.max_iterations, "ICP iterations per stage")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
-  command
-      ->add_option("--min-fitness", min_fitness,
-                   "--rigid: fail below this fraction of matched points")
-      ->capture_default_str();
+  option_with_default(command, "--min-fitness", min_fitness,
+                      "--rigid: fail below this fraction of matched points");
   command->add_option("--garment-labels", garment_labels,
                       "part labels of the garment (labels JSON)");
   command->add_option("--body-labels", body_labels, "part labels of the body (labels JSON)");
@@ -99,20 +90,15 @@ void AlignCommand::add_to(CLI::App& app) {
                       "entry of --garment-labels (default: file stem)");
   command->add_option("--body-labels-key", body_labels_key,
                       "entry of --body-labels (default: file stem)");
-  command->add_option("--clearance", placement.clearance, "distance kept outside the body [m]")
-      ->capture_default_str();
-  command
-      ->add_option("--blend-radius", placement.blend_radius,
-                   "part transforms blend within this distance [m]")
-      ->capture_default_str();
-  command
-      ->add_option("--max-stretch", placement.max_edge_stretch,
-                   "edges longer than (1 + this) x rest length are shortened")
-      ->capture_default_str();
-  command
-      ->add_option("--layer-gap", placement.layer_gap,
-                   "pieces of an outfit kept this far apart, outer outside inner [m]; < 0 = off")
-      ->capture_default_str();
+  option_with_default(command, "--clearance", placement.clearance,
+                      "distance kept outside the body [m]");
+  option_with_default(command, "--blend-radius", placement.blend_radius,
+                      "part transforms blend within this distance [m]");
+  option_with_default(command, "--max-stretch", placement.max_edge_stretch,
+                      "edges longer than (1 + this) x rest length are shortened");
+  option_with_default(
+      command, "--layer-gap", placement.layer_gap,
+      "pieces of an outfit kept this far apart, outer outside inner [m]; < 0 = off");
   command->add_flag("--part-scale", part_scale, "per-part similarity ICP (default: rigid parts)");
   command->add_flag("--keep-ease", placement.keep_ease,
                     "per-part ICP onto the body raised by the part's ease, not onto the skin");

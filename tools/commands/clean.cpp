@@ -7,11 +7,7 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/mesh/topology.h"
 
-using namespace dresskit::mesh;
-
 namespace dresskit::cli {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 void CleanCommand::add_to(CLI::App& app) {
   command = app.add_subcommand("clean", "repair a mesh and write it; prints what it fixed");

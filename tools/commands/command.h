@@ -2,8 +2,38 @@
 // A command of dress-a-mesh: it adds its arguments to the app and runs when it is the one chosen.
 // Errors are thrown (InputError, OutputError, ...); main maps them to exit codes (docs/cli.md).
 #include <CLI/CLI.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+// The commands call every library by its plain names (each command file includes the headers it uses).
+namespace dresskit::alignment {}
+namespace dresskit::cloth {}
+namespace dresskit::dressing {}
+namespace dresskit::mannequin {}
+namespace dresskit::mesh {}
+namespace dresskit::pattern {}
+namespace dresskit::report {}
+namespace dresskit::segmentation {}
+namespace dresskit::thickness {}
 
 namespace dresskit::cli {
+using namespace dresskit::alignment;
+using namespace dresskit::cloth;
+using namespace dresskit::dressing;
+using namespace dresskit::mannequin;
+using namespace dresskit::mesh;
+using namespace dresskit::pattern;
+using namespace dresskit::report;
+using namespace dresskit::segmentation;
+using namespace dresskit::thickness;
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+/// An option that shows its default in --help.
+template <typename T>
+CLI::Option* option_with_default(CLI::App* command, const std::string& name, T& value, const std::string& help) {
+  return command->add_option(name, value, help)->capture_default_str();
+}
 
 struct Command {
   CLI::App* command = nullptr;  ///< the subcommand, set by add_to

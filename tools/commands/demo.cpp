@@ -12,13 +12,7 @@
 #include "common/mesh.h"
 #include "common/output_folder.h"
 
-using namespace dresskit::dressing;
-using namespace dresskit::mannequin;
-using namespace dresskit::mesh;
-
 namespace dresskit::cli {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 void DemoCommand::add_to(CLI::App& app) {
   command = app.add_subcommand("demo", "the embedded default scene: a procedural mannequin and garments made on "
@@ -28,12 +22,12 @@ void DemoCommand::add_to(CLI::App& app) {
   command->add_option("--dress-seconds", seconds,
                       "simulated settling at most [s], up to 60 (default: the quality's, 0.5, 1 or 2 s)");
   command->add_flag("--no-settle", no_settle, "write the garments as made, not settled");
-  command->add_option("--quality", quality, "fast, balanced or accurate")->capture_default_str();
-  command->add_option("--height", body.height, "mannequin height [m]")->capture_default_str();
-  command->add_option("--girth", body.girth, "mannequin girth scale")->capture_default_str();
-  command->add_option("--pose", pose, "a-pose or t-pose")->capture_default_str();
-  command->add_option("--edge", body.edge_length, "target edge length [m]")->capture_default_str();
-  command->add_option("--ease", garments.ease, "garment ease over the body [m]")->capture_default_str();
+  option_with_default(command, "--quality", quality, "fast, balanced or accurate");
+  option_with_default(command, "--height", body.height, "mannequin height [m]");
+  option_with_default(command, "--girth", body.girth, "mannequin girth scale");
+  option_with_default(command, "--pose", pose, "a-pose or t-pose");
+  option_with_default(command, "--edge", body.edge_length, "target edge length [m]");
+  option_with_default(command, "--ease", garments.ease, "garment ease over the body [m]");
 }
 
 int DemoCommand::run() {

@@ -14,12 +14,7 @@
 #include "common/output_folder.h"
 #include "common/progress.h"
 
-using namespace dresskit::dressing;
-using namespace dresskit::mesh;
-
 namespace dresskit::cli {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 void DressCommand::add_to(CLI::App& app) {
   command = app.add_subcommand("dress", "dress BODY in GARMENT(s), given inside to outside: segment, place, "
@@ -33,17 +28,16 @@ void DressCommand::add_to(CLI::App& app) {
   command->add_option("--units", units, "length unit of every input: m, dm, cm, mm or metres per unit");
   command->add_option("--body-units", body_units, "length unit of BODY (overrides --units)");
   command->add_option("--garment-units", garment_units, "length unit of the garments (overrides --units)");
-  command->add_option("--up", up, "up axis of every input: +x, -x, +y, -y, +z, -z")->capture_default_str();
+  option_with_default(command, "--up", up, "up axis of every input: +x, -x, +y, -y, +z, -z");
   command->add_option("--fabric", fabrics,
                       "fabric of each garment in order (one: all of them); default gray-interlock");
   command->add_option("--body-labels", body_labels, "part labels of the body (labels JSON): no segmentation");
   command->add_option("--garment-labels", garment_labels,
                       "part labels of each garment in order (one file: all of them, keyed by file stem)");
-  command->add_option("--quality", quality, "fast, balanced or accurate")->capture_default_str();
-  command->add_option("--layers", layers,
-                      "given: worn inside to outside in the order given; inferred: from the garments' kinds "
-                      "(bottoms under tops, the larger outside)")
-      ->capture_default_str();
+  option_with_default(command, "--quality", quality, "fast, balanced or accurate");
+  option_with_default(command, "--layers", layers,
+                      "given: worn inside to outside in the order given; inferred: from the "
+                      "garments' kinds (bottoms under tops, the larger outside)");
   command->add_flag("--no-settle", no_settle, "stop after placement (dressed = placed)");
   command->add_flag("--json", as_json, "print the report as JSON on stdout (nothing else)");
   command->add_flag("--segments", segments, "also write segments.ply: every mesh coloured by part");

@@ -4,10 +4,7 @@
 
 #include "dresskit/mesh/io.h"
 
-using namespace dresskit::mesh;
-
 namespace dresskit::cli {
-using json = nlohmann::json;
 
 void InfoCommand::add_to(CLI::App& app) {
   command = app.add_subcommand("info", "print vertices, faces, bounding box, components, "

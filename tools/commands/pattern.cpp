@@ -11,12 +11,7 @@
 #include "dresskit/pattern/pattern.h"
 #include "dresskit/pattern/svg.h"
 
-using namespace dresskit::mesh;
-using namespace dresskit::pattern;
-
 namespace dresskit::cli {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 void PatternCommand::add_to(CLI::App& app) {
   command =

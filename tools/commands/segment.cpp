@@ -13,16 +13,8 @@
 #include "common/output_folder.h"
 #include "common/pages.h"
 
-using namespace dresskit::cloth;
-using namespace dresskit::mesh;
-using namespace dresskit::report;
-using namespace dresskit::segmentation;
-
 namespace dresskit::cli {
 namespace {
-
-using json = nlohmann::json;
-namespace fs = std::filesystem;
 
 Eigen::Vector3d axis_vector(UpAxis axis) {
   switch (axis) {
@@ -199,10 +191,10 @@ void SegmentCommand::add_to(CLI::App& app) {
                                "per part (docs/segmentation.md)");
   command->add_option("MESH", path, "input mesh (obj, ply, off, stl, gltf, glb, fbx)")->required();
   command->add_option("--parts", parts, "number of parts (default: chosen by the eigengap)");
-  command->add_option("--max-parts", options.max_parts, "largest automatic number of parts")
-      ->capture_default_str();
-  command->add_option("--units", units, "source length unit: m, dm, cm, mm or metres per unit")
-      ->capture_default_str();
+  option_with_default(command, "--max-parts", options.max_parts,
+                      "largest automatic number of parts");
+  option_with_default(command, "--units", units,
+                      "source length unit: m, dm, cm, mm or metres per unit");
   command->add_option("--up", up,
                       "source up axis: +x, -x, +y, -y, +z, -z (default: estimated by PCA, "
                       "the mesh read as +y)");
@@ -210,46 +202,30 @@ void SegmentCommand::add_to(CLI::App& app) {
                       "the character's facing axis after --up "
                       "(default: estimated from the feet, else +z)");
   command->add_option("-o,--output", output, "output directory")->required();
-  command->add_option("--affinity", affinity, "dihedral, edge-length or cotangent")
-      ->capture_default_str();
-  command->add_option("--laplacian", laplacian, "normalized or plain")->capture_default_str();
-  command->add_option("--tolerance", options.eigen.tolerance, "eigen-solver tolerance")
-      ->capture_default_str();
-  command->add_option("--ncv", options.eigen.ncv, "eigen-solver subspace size (0: automatic)")
-      ->capture_default_str();
-  command
-      ->add_option("--bridge-gaps", options.bridge_gaps,
-                   "join boundary vertices closer than this many mean edge lengths (0: off)")
-      ->capture_default_str();
-  command
-      ->add_option("--over-segmentation", options.over_segmentation,
-                   "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)")
-      ->capture_default_str();
-  command
-      ->add_option("--boundary-band", options.boundary_band,
-                   "random-walker band around each cut, in radii of the junction (0: off)")
-      ->capture_default_str();
-  command
-      ->add_option("--limb-tip", options.limb_tip_fraction,
-                   "limb cuts follow the harmonic field from tips beyond this fraction of the "
-                   "limb's depth (0: off)")
-      ->capture_default_str();
-  command
-      ->add_option(
-          "--symmetry", options.symmetry_tolerance,
-          "limb cuts made mirror-symmetric when the mesh is symmetric within this many mean "
-          "edge lengths (0: off)")
-      ->capture_default_str();
-  command
-      ->add_option("--grow-limbs", options.grow_limbs,
-                   "automatic parts: a closed mesh takes more parts while each new one is a limb "
-                   "(1) or keeps the eigengap's choice (0)")
-      ->capture_default_str();
-  command
-      ->add_option("--split-skirts", options.split_skirts,
-                   "cut a two-opening tube (a skirt) into waist band and left and right halves "
-                   "(1) or leave it to the spectrum (0)")
-      ->capture_default_str();
+  option_with_default(command, "--affinity", affinity, "dihedral, edge-length or cotangent");
+  option_with_default(command, "--laplacian", laplacian, "normalized or plain");
+  option_with_default(command, "--tolerance", options.eigen.tolerance, "eigen-solver tolerance");
+  option_with_default(command, "--ncv", options.eigen.ncv,
+                      "eigen-solver subspace size (0: automatic)");
+  option_with_default(command, "--bridge-gaps", options.bridge_gaps,
+                      "join boundary vertices closer than this many mean edge lengths (0: off)");
+  option_with_default(
+      command, "--over-segmentation", options.over_segmentation,
+      "also try k+1 .. k+N clusters merged back to k by structure (0: plain k-means)");
+  option_with_default(command, "--boundary-band", options.boundary_band,
+                      "random-walker band around each cut, in radii of the junction (0: off)");
+  option_with_default(command, "--limb-tip", options.limb_tip_fraction,
+                      "limb cuts follow the harmonic field from tips beyond this fraction of the "
+                      "limb's depth (0: off)");
+  option_with_default(command, "--symmetry", options.symmetry_tolerance,
+                      "limb cuts made mirror-symmetric when the mesh is symmetric within this many "
+                      "mean edge lengths (0: off)");
+  option_with_default(command, "--grow-limbs", options.grow_limbs,
+                      "automatic parts: a closed mesh takes more parts while each new one is a "
+                      "limb (1) or keeps the eigengap's choice (0)");
+  option_with_default(command, "--split-skirts", options.split_skirts,
+                      "cut a two-opening tube (a skirt) into waist band and left and right halves "
+                      "(1) or leave it to the spectrum (0)");
   command->add_flag("--json", as_json, "print labels.json's summary fields as JSON");
 }
 

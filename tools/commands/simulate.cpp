@@ -19,13 +19,7 @@
 #include "common/pages.h"
 #include "common/progress.h"
 
-using namespace dresskit::cloth;
-using namespace dresskit::mesh;
-using namespace dresskit::report;
-
 namespace dresskit::cli {
-namespace fs = std::filesystem;
-using json = nlohmann::json;
 
 void SimulateCommand::add_to(CLI::App& app) {
   command = app.add_subcommand("simulate", "run a cloth scene (JSON, see docs/scenes.md); writes "

@@ -12,13 +12,8 @@
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/names.h"
 
-using namespace dresskit::cloth;
-using namespace dresskit::thickness;
-
 namespace dresskit::cli {
 namespace {
-
-using json = nlohmann::json;
 
 std::string composition_text(const Composition& c) {
   std::ostringstream out;
@@ -81,18 +76,18 @@ void ThicknessCommand::add_to(CLI::App& app) {
   by_name->excludes(by_mix)->excludes(all);
   by_mix->excludes(all);
   command->add_option("--fabric-file", fabric_file, "fabrics JSON (layout of fabrics.json)")->needs(by_name);
-  command->add_option("--t-skin", options.t_skin, "skin temperature [°C]")->capture_default_str();
-  command->add_option("--t-env", options.t_env, "outside temperature [°C]")->capture_default_str();
-  command->add_option("--time", options.exposure, "exposure time [s]")->capture_default_str();
+  option_with_default(command, "--t-skin", options.t_skin, "skin temperature [°C]");
+  option_with_default(command, "--t-env", options.t_env, "outside temperature [°C]");
+  option_with_default(command, "--time", options.exposure, "exposure time [s]");
   command->add_option("--t-initial", options.t_initial,
                       "the fabric's temperature at the start [°C]; default: --t-env");
   command->add_option("--threshold", options.threshold,
                       "threshold temperature [°C]; default: midway between --t-skin and --t-env");
-  command->add_option("--solidity", options.solidity, "fibre volume fraction of the fabric")
-      ->capture_default_str();
-  command->add_option("--scheme", scheme, "explicit, implicit or crank-nicolson")->capture_default_str();
-  command->add_option("--cells", options.heat.cells, "grid cells through the slab")->capture_default_str();
-  command->add_option("--steps", options.heat.steps, "time steps")->capture_default_str();
+  option_with_default(command, "--solidity", options.solidity,
+                      "fibre volume fraction of the fabric");
+  option_with_default(command, "--scheme", scheme, "explicit, implicit or crank-nicolson");
+  option_with_default(command, "--cells", options.heat.cells, "grid cells through the slab");
+  option_with_default(command, "--steps", options.heat.steps, "time steps");
   command->add_option("--panel-areas", panel_areas,
                       "down fill: comma-separated panel areas [m²]; prints each panel's fill mass");
   command->add_option("--plot", plot_dir, "write temperature.csv and temperature.png (T(x, t)) here");
