@@ -89,7 +89,7 @@ struct PlacementResult {
 PlacementResult place_garment(const mesh::TriangleMesh& garment, const mesh::TriangleMesh& body,
                               const PlacementOptions& options = {});
 
-/// Comparison of a posed garment with a reference placement (same vertex order), for tests/benches.
+/// Comparison of a posed garment with a reference placement (same vertex order): `align --reference`.
 struct PlacementQuality {
   double body_height = 0.0;       ///< [m] extent of the body along +Y
   double mean_distance = 0.0;     ///< mean vertex distance to the reference / body height
