@@ -2,8 +2,10 @@
 // header that declares 10⁹ vertices over three makes it reserve gigabytes and read for minutes, a
 // PLY header without its `end_header` line makes it loop, and an OFF face naming a vertex past the
 // table is accepted. Here the header is read, the counts are checked against what the file's size
-// can hold, and OFF face indices against the vertex count, each with one line naming the file.
+// can hold, and OFF face indices against the vertex count, each with one line naming the file. Files
+// in binary and JSON formats must start as their format says (check_signature).
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -154,6 +156,35 @@ void check_off(const std::string& path, std::uint64_t file_size) {
   }
 }
 
+// assimp reads a file that its extension's reader refuses with any reader that recognises the
+// content (its PLY reader takes a file with the word "ply" anywhere in its first 200 bytes, and can
+// search forever for a header's end there): a binary or JSON format must start as that format.
+void check_signature(const std::string& path, const std::string& ext, std::uint64_t size) {
+  std::string head(std::size_t{512}, '\0');
+  std::ifstream in(path, std::ios::binary);
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  const std::size_t text = head.find_first_not_of(" \t\r\n");
+  const std::string start = text == std::string::npos ? "" : head.substr(text);
+  auto starts = [](const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; };
+  bool ok = true;
+  std::string expected;
+  if (ext == "glb") {
+    ok = starts(head, "glTF"), expected = "the binary glTF header 'glTF'";
+  } else if (ext == "gltf") {
+    ok = starts(start, "{"), expected = "a JSON object";
+  } else if (ext == "stl") {
+    std::uint32_t triangles = 0;
+    if (head.size() >= 84) std::memcpy(&triangles, head.data() + 80, sizeof triangles);
+    ok = starts(start, "solid") || (head.size() >= 84 && size == 84 + 50 * std::uint64_t{triangles});
+    expected = "'solid' or a binary STL's size for its triangle count";
+  } else if (ext == "fbx") {
+    ok = starts(head, "Kaydara FBX Binary") || starts(start, ";") || head.find("FBXHeaderExtension") != std::string::npos;
+    expected = "an FBX header";
+  }
+  if (!ok) throw InputError(path + ": not a ." + ext + " file (it does not start with " + expected + ")");
+}
+
 }  // namespace
 
 void check_declared_counts(const std::string& path) {
@@ -169,6 +200,7 @@ void check_declared_counts(const std::string& path) {
   first = first.substr(0, first.find_first_of("\r\n"));
   const std::string word = first.substr(0, first.find(' '));
   const bool off_magic = word.size() >= 3 && word.size() <= 6 && word.compare(word.size() - 3, 3, "OFF") == 0;
+  check_signature(path, ext, size);
   if (ext == "ply" || first == "ply") check_ply(path, size);
   else if (ext == "off" || off_magic) check_off(path, size);
 }

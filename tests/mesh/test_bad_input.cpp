@@ -80,7 +80,13 @@ const BadFile kBadFiles[] = {
     // fuzzing: assimp's PLY reader looped on it), an OFF declaring 10⁹ vertices named .obj.
     {"ply_inside.glb", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                        "property float z\nenf\xac\xac" "ement face 2\np",
-     "line 7 starts with an unknown word"},
+     "not a .glb file (it does not start with the binary glTF header 'glTF')"},
+    // Found by fuzzing: assimp's PLY reader took a .glb with the word "ply" in its first bytes and
+    // searched forever for its header's end; a binary or JSON format must start as that format.
+    {"ply_word.glb", "ply\x01\xb4p\x01ply\nformat ascii 0.0\nele\n\x10ment vertex 3\nproperty list uchar ",
+     "not a .glb file"},
+    {"ply_word.gltf", "ply\nformat ascii 1.0\nelement vertex 3\n", "not a .gltf file (it does not start with a JSON object)"},
+    {"ply_word.fbx", "ply\nformat ascii 1.0\nelement vertex 3\n", "not a .fbx file"},
     {"off_inside.obj", "OFF\n1000000000 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n", "declares 1000000000 vertices"},
 };
 }  // namespace
