@@ -1,4 +1,4 @@
-// Projective dynamics (Bouaziz et al. 2014, "ProjectiveFactor Dynamics: Fusing Constraint Projections for
+// Projective dynamics (Bouaziz et al. 2014, "Projective Dynamics: Fusing Constraint Projections for
 // Fast Simulation"; for mass-spring systems Liu et al. 2013, "Fast Simulation of Mass-Spring
 // Systems"): backward Euler's incremental potential with every spring as the quadratic
 // w/2 |xj − xi − d|². Global step: one constant, prefactored linear system for the three coordinate
