@@ -63,6 +63,9 @@ PanelTriangles mesh_panel(const std::vector<Eigen::Vector2d>& outline, const Cut
   // Faces not reachable from outside without crossing the outline are the panel (CGAL marks the
   // infinite face's component as outside when no seeds are given).
   Mesher mesher(cdt, Criteria(options.shape_bound, options.edge_length));
+  // This mesher leaves its seed mark uninitialised (the sanitizer build reports reading it);
+  // clear_seeds() sets it to false, Delaunay_mesher_2's default: no seeds, mesh the bounded domain.
+  mesher.clear_seeds();
   mesher.refine_mesh();
   PanelTriangles out;
   int next = int(outline.size());
