@@ -102,8 +102,13 @@ TEST(Cli, BadInputsExit2WithOneLineAndNoOutput) {
         "property float x\nproperty float y\nproperty float z\n"
         "element face 1\nproperty list uchar int vertex_indices\nend_header\n\x01\x02");
   write(dir.file("mesh.txt"), "hello\n");
+  // Files the fuzzers found assimp hanging on: a header's end followed by a vertical tab, and a
+  // .glb with the word "ply" near its start (its glTF reader refused it, its PLY reader looped).
+  write(dir.file("end_tab.ply"), "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                 "property float z\nend_header\v0 0 0\n1 0 0\n0 1 0\n");
+  write(dir.file("ply_word.glb"), "ply\x01\xb4p\x01ply\nformat ascii 0.0\nele\n\x10ment vertex 3\nproperty list uchar ");
   for (const char* name : {"missing.obj", "empty.obj", "nofaces.obj", "nan.obj", "range.obj",
-                           "trunc.ply", "mesh.txt"}) {
+                           "trunc.ply", "mesh.txt", "end_tab.ply", "ply_word.glb"}) {
     const std::string in = dir.file(name), out = dir.file("out.obj");
     for (const std::string& cmd : {"info " + in, "clean " + in + " -o " + out}) {
       const CliRun r = run(dir, cmd);
