@@ -307,7 +307,7 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
   const double beyond = sim.options_.dynamic_stiffness ? 1.0 + sim.options_.strain_limit : HUGE_VAL;
   const double* rest = sim.model_.rest_positions.data();
   int iterations = 0;
-  // The force left unbalanced at the start of the first and the last iteration: the largest row of
+  // The force left unbalanced at the start of the last iteration: the largest row of
   // b − A X over free particles [N] (the potential's gradient; free in the residual forms below).
   auto unbalanced = [&](const double* R) {
     double worst = 0.0;
@@ -315,7 +315,7 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
       if (!sim.pinned_[v]) worst = std::max(worst, R[3 * v] * R[3 * v] + R[3 * v + 1] * R[3 * v + 1] + R[3 * v + 2] * R[3 * v + 2]);
     return std::sqrt(worst);
   };
-  force_start_ = force_end_ = -1.0;
+  force_end_ = -1.0;
   for (int it = 0; it < sim.options_.projective.iterations && fused; ++it) {
     double* R = rhs.data();
     const double* x = X.data();
@@ -336,7 +336,6 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
     if (in_contact) add_contact_forces(R);
     for (int v : P.pinned_list) R[3 * v] = R[3 * v + 1] = R[3 * v + 2] = 0.0;
     force_end_ = unbalanced(R);
-    if (it == 0) force_start_ = force_end_;
     previous = X;
     P.single.solve_in_place(R);
     X += rhs;
@@ -384,7 +383,6 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
         R[3 * row] = r0, R[3 * row + 1] = r1, R[3 * row + 2] = r2;
       }
       force_end_ = unbalanced(R);
-      if (it == 0) force_start_ = force_end_;
       P.single.solve_in_place(R);
       X += rhs;
     } else {
@@ -512,7 +510,6 @@ void ProjectiveDynamics::step(ClothSimulator& sim, StepResult& r) {
     r.newton_iterations += iterations;
     const double weight = sim.model_.mass.maxCoeff() * sim.options_.gravity.norm();
     if (force_end_ >= 0.0 && weight > 0.0) {
-      r.unbalanced_start = force_start_ / weight;
       r.unbalanced_end = force_end_ / weight;
       r.iterations_ran_out = iterations >= sim.options_.projective.iterations;
     }

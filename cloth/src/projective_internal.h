@@ -263,9 +263,9 @@ class ProjectiveDynamics final : public TimeIntegrator {
             const Eigen::Vector3d& wind, const Eigen::MatrixX3d& x0, pd::RowX3& X);
   /// Built at the first step and again when the step size or the pins change.
   std::shared_ptr<ProjectiveFactor> current_;
-  /// The last solve's unbalanced force at the start of its first and its last iteration [N]
-  /// (−1: not measured, the double-precision solve).
-  double force_start_ = -1.0, force_end_ = -1.0;
+  /// The last solve's unbalanced force at the start of its last iteration [N] (−1: not measured,
+  /// the double-precision solve).
+  double force_end_ = -1.0;
   /// The factorisations of up to four other step sizes, most recent first (adaptive steps, BDF2's
   /// start-up); dropped when adaptive weights change the matrix.
   std::vector<std::shared_ptr<ProjectiveFactor>> cache_;

@@ -162,9 +162,9 @@ struct StepResult {
   double integrator_strain = 0.0;  ///< largest structural strain right after the integrator [unitless]
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
   /// Projective dynamics: the largest force left unbalanced on a free particle at the start of the
-  /// solve's first and last iteration, over the heaviest particle's weight (−1: not measured, as
-  /// with the double-precision solve), and whether the solve used all its iterations.
-  double unbalanced_start = -1.0, unbalanced_end = -1.0;
+  /// solve's last iteration, over the heaviest particle's weight (−1: not measured, as with the
+  /// double-precision solve), and whether the solve used all its iterations.
+  double unbalanced_end = -1.0;
   bool iterations_ran_out = false;
   /// CPU time (this thread's) of the step's phases [s] (of the last try when adaptive stepping retried): the
   /// integrator (forces and solve; of which forces and the system's assembly: force_seconds, implicit
