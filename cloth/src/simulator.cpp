@@ -384,7 +384,7 @@ StepResult ClothSimulator::try_step(double dt) {
   }
   r.constraint_seconds = since(t);
   t = Clock::now();
-  if (r.ok && model_.seams.size() > 0) sew(r);
+  if (r.ok && model_.seams.size() > 0) sew(r, true);
   r.seam_seconds = since(t);
   t = Clock::now();
   if (r.ok && !options_.colliders.empty()) {
@@ -418,7 +418,7 @@ StepResult ClothSimulator::try_step(double dt) {
     if (round > 0) {
       const Eigen::MatrixX3d start = x_;
       if (!model_.springs.limited.empty() || options_.strain_limiting) limit_strain(start, r, false);
-      const double opened = model_.seams.size() > 0 ? sew(r) : 0.0;
+      const double opened = model_.seams.size() > 0 ? sew(r, false) : 0.0;
       if (!options_.colliders.empty()) collide(x0, r);
       // A round that moved nothing ends them. (Stopping already when it moved nothing by more than
       // 1 % of the thickness saved no time on the sphere or cape scenes and left the 100² cape's

@@ -104,16 +104,22 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
 
 // Sewing: a stitch whose two points have come within the seam tolerance is sewn, and from then on
 // its points are moved together (by inverse mass, as the collision corrections), so a closed seam
-// stays closed; velocities follow the moves.
-double ClothSimulator::sew(StepResult& r) {
+// stays closed; velocities follow the moves. With a closing speed (and `draw`: once per step) a
+// stitch not yet sewn is drawn closer by up to speed × dt, and sewn once that closes it.
+double ClothSimulator::sew(StepResult& r, bool draw) {
+  const double reach = draw ? options_.seam_closing_speed * dt_ : 0.0;
   const SeamSet& s = model_.seams;
   const Eigen::MatrixX3d before = x_;
   int idx[4] = {0, 0, 0, 0};
   double w[4] = {0, 0, 0, 0}, widest = 0.0;
+  std::vector<int> drawn;
   for (int k = 0; k < s.size(); ++k) {
     const Eigen::Vector3d c = seam_gap(s, k, x_);
     if (!sewn_[k]) {
-      if (c.norm() > options_.seam_tolerance) continue;
+      if (c.norm() > std::max(options_.seam_tolerance, reach)) {
+        if (reach > 0.0) drawn.push_back(k);
+        continue;
+      }
       sewn_[k] = 1;
       ++r.stitches_sewn;
     }
@@ -121,8 +127,65 @@ double ClothSimulator::sew(StepResult& r) {
     seam_weights(s, k, idx, w);
     shift_weighted_difference(x_, inverse_mass_, idx, w, -c);
   }
+  for (const int k : drawn) draw_stitch(k, reach);
   v_ += (x_ - before) / dt_;
   return widest;
+}
+
+// Where a stitch's two sides a and b are to meet: their midpoint, or where that lies within a
+// collider's margin, the nearest point outside it on a ray from the midpoint square to a–b (eight
+// directions, sphere-traced): the way around the body part between them.
+Eigen::Vector3d ClothSimulator::meeting_point(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+  const Eigen::Vector3d mid = 0.5 * (a + b);
+  const double margin = options_.collision_margin;
+  auto clearance = [&](const Eigen::Vector3d& p) {
+    double d = std::numeric_limits<double>::infinity();
+    Eigen::Vector3d n;
+    for (const Collider& c : options_.colliders) d = std::min(d, c.distance(p, &n) - margin);
+    return d;
+  };
+  if (clearance(mid) >= 0.0) return mid;
+  const Eigen::Vector3d u = (b - a).normalized();
+  const Eigen::Vector3d e1 = u.unitOrthogonal(), e2 = u.cross(e1);
+  const double reach = 0.5, step = 0.002;  // [m]
+  double best = reach;
+  Eigen::Vector3d meet = mid;
+  for (int k = 0; k < 8; ++k) {
+    const double angle = k * M_PI / 4.0;
+    const Eigen::Vector3d dir = std::cos(angle) * e1 + std::sin(angle) * e2;
+    for (double t = 0.0; t < best;) {
+      const double d = clearance(mid + t * dir);
+      if (d >= 0.0) {
+        best = t;
+        meet = mid + t * dir;
+        break;
+      }
+      t += std::max(-d, step);
+    }
+  }
+  return meet;
+}
+
+// A stitch not yet sewn is drawn closer: each side moves by up to half the reach towards the point
+// where they are to meet (meeting_point). So a seam whose two sides lie on either side of a
+// shoulder closes over the shoulder instead of pulling both sides into it.
+void ClothSimulator::draw_stitch(int k, double reach) {
+  const SeamSet& s = model_.seams;
+  const Eigen::Vector3d a = row(x_, s.a[k]);
+  const Eigen::Vector3d b = (1.0 - s.t[k]) * row(x_, s.b0[k]) + s.t[k] * row(x_, s.b1[k]);
+  const Eigen::Vector3d meet = meeting_point(a, b);
+  auto towards = [&](const Eigen::Vector3d& from) -> Eigen::Vector3d {
+    const Eigen::Vector3d to = meet - from;
+    const double len = to.norm();
+    return len > 0.5 * reach ? Eigen::Vector3d(0.5 * reach / len * to) : to;
+  };
+  auto move = [&](int p, const Eigen::Vector3d& d) {
+    if (!pinned_[p]) x_.row(p) += d.transpose();
+  };
+  const Eigen::Vector3d db = towards(b);
+  move(s.a[k], towards(a));
+  move(s.b0[k], db);  // an edge's point moves with both its ends
+  if (s.b1[k] != s.b0[k]) move(s.b1[k], db);
 }
 
 void ClothSimulator::keep_layer_order(StepResult& r) {

@@ -57,6 +57,8 @@ void check_options(const SimulationOptions& o) {
   need(std::isfinite(sc.friction) && sc.friction >= 0.0, "cloth_friction: must be ≥ 0");
   need(sc.impulse_passes > 0 && sc.zone_passes > 0, "self-collision passes: must be positive");
   need(std::isfinite(o.seam_tolerance) && o.seam_tolerance > 0.0, "seam_tolerance: must be positive");
+  need(std::isfinite(o.seam_closing_speed) && o.seam_closing_speed >= 0.0,
+       "seam_closing_speed: must be zero or positive");
 }
 
 }  // namespace dresskit::cloth

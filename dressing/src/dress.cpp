@@ -484,7 +484,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       o.colliders.push_back(Collider::mesh(body_distance));
       std::vector<ClothModel> models;
       for (std::size_t k = 0; k < result.garments.size(); ++k)
-        models.push_back(build_cloth(rest_shape(result.garments[k]), fabrics[k]));
+        models.push_back(garment_cloth(result.garments[k], fabrics[k]));
       const std::vector<int> first = garment_offsets(models);
       const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
       RunOptions run_options;
@@ -552,7 +552,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     DressedGarment& g = result.garments[k];
     g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);
     g.inside_dressed = surface_fit(g.dressed, inside).inside;
-    g.max_strain_dressed = max_structural_strain(build_cloth(rest_shape(g), fabrics[k]), g.dressed);
+    g.max_strain_dressed = max_structural_strain(garment_cloth(g, fabrics[k]), g.dressed);
     if (g.from_pattern && result.settled) measure_dressed_panels(g);
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];

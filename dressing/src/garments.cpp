@@ -62,6 +62,25 @@ TriangleMesh rest_shape(const DressedGarment& g) {
   return rest;
 }
 
+cloth::ClothModel garment_cloth(const DressedGarment& g, const cloth::Fabric& fabric) {
+  cloth::ClothModel model = cloth::build_cloth(rest_shape(g), fabric);
+  const SewnPattern& p = g.pattern;
+  if (!g.from_pattern || p.flat_edges.empty()) return model;
+  cloth::SpringSet& s = model.springs;
+  for (int k = 0; k < s.size(); ++k) {
+    if (s.type[k] != cloth::SpringType::structural) continue;
+    const std::array<int, 2> edge{std::min(s.i[k], s.j[k]), std::max(s.i[k], s.j[k])};
+    const auto it = std::lower_bound(p.flat_edges.begin(), p.flat_edges.end(), edge);
+    if (it == p.flat_edges.end() || *it != edge) continue;
+    const double L = p.flat_edge_length[std::size_t(it - p.flat_edges.begin())];
+    const double scale = (s.rest_length[k] / L) * (s.rest_length[k] / L);  // k ∝ 1 / L0²
+    s.rest_length[k] = L;
+    s.k_rest[k] *= scale;
+    s.k_knee[k] *= scale;
+  }
+  return model;
+}
+
 int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at) {
   if (garments.size() < 2) return 0;
   TriangleMesh all = empty_mesh();

@@ -3,6 +3,8 @@
 // placement made cross rebuilt, its kind, and its waistband.
 #include <vector>
 
+#include "dresskit/cloth/cloth_model.h"
+#include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/dressing/dress.h"
 #include "dresskit/mesh/inside.h"
@@ -11,6 +13,11 @@ namespace dresskit::dressing::detail {
 
 /// The garment's rest shape for settling: as made, graded by the placement's size change.
 mesh::TriangleMesh rest_shape(const DressedGarment& g);
+
+/// The garment's cloth for settling: built from its rest shape in its fabric; a sewn pattern's
+/// stretch springs take the flat pattern's lengths (the sewing strains the fabric; the garment's
+/// rest is its pattern), their stiffness kept per unit strain.
+cloth::ClothModel garment_cloth(const DressedGarment& g, const cloth::Fabric& fabric);
 
 /// Rebuilds the regions where the placed garment k crosses itself more often than as authored
 /// (garments.cpp); updates its placed positions and crossings_placed.

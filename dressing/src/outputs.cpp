@@ -101,7 +101,13 @@ json pattern_json(const SewnPattern& p) {
                       {"area_dressed_m2", dressed ? json(p.panel_area_dressed[k]) : json(nullptr)},
                       {"area_change", dressed ? json(p.panel_area_dressed[k] / p.panel_area[k] - 1.0) : json(nullptr)}});
   }
-  return {{"seams", {{"count", p.stitches}, {"pairs", p.stitch_pairs}, {"max_gap_m", p.max_gap}, {"closed", p.closed}}},
+  return {{"seams",
+           {{"count", p.stitches},
+            {"pairs", p.stitch_pairs},
+            {"sewn_pairs", p.sewn_pairs},
+            {"max_gap_m", p.max_gap},
+            {"closed", p.closed},
+            {"method", p.sew_method}}},
           {"panels", panels},
           {"pattern",
            {{"triangles", p.triangles},

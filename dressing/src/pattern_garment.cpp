@@ -1,6 +1,7 @@
 #include "pattern_garment.h"
 
 #include <algorithm>
+#include <map>
 
 #include "dresskit/pattern/cut.h"
 #include "dresskit/pattern/pattern.h"
@@ -39,8 +40,27 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   for (Eigen::Index f = 0; f < cut.faces.rows(); ++f)
     for (int k = 0; k < 3; ++k) s.panel_faces(f, k) = sewn.welded_vertex[cut.faces(f, k)];
   s.panel_of_face = cut.panel_of_face;
+  // Flat lengths of the triangles' edges, keyed by their welded ends.
+  std::map<std::array<int, 2>, std::pair<double, int>> flat;
+  for (Eigen::Index f = 0; f < cut.faces.rows(); ++f)
+    for (int c = 0; c < 3; ++c) {
+      const int a = cut.faces(f, c), b = cut.faces(f, (c + 1) % 3);
+      const int u = sewn.welded_vertex[a], v = sewn.welded_vertex[b];
+      if (u == v) continue;
+      auto& [sum, count] = flat[{std::min(u, v), std::max(u, v)}];
+      sum += (cut.flat.row(a) - cut.flat.row(b)).norm();
+      ++count;
+    }
+  s.flat_edges.clear();
+  s.flat_edge_length.clear();
+  for (const auto& [edge, length] : flat) {
+    s.flat_edges.push_back(edge);
+    s.flat_edge_length.push_back(length.first / length.second);
+  }
   s.stitches = static_cast<int>(p.stitches.size());
   s.stitch_pairs = sewn.stitch_pairs;
+  s.sewn_pairs = sewn.closed_pairs;
+  s.sew_method = sewn.method;
   s.max_gap = sewn.max_gap;
   s.closed = sewn.closed;
   s.triangles = static_cast<int>(sewn.garment.F.rows());
@@ -49,7 +69,7 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   s.sew_simulated = sewn.simulated_seconds;
   s.warnings = p.warnings;
   if (!sewn.closed) {
-    // The stitch furthest from closed, named: its pairs that did close are welded, the rest stay
+    // The stitch furthest from closed, named: its pairs that were sewn are welded, the rest stay
     // open.
     const auto widest =
         std::max_element(sewn.stitch_gap.begin(), sewn.stitch_gap.end()) - sewn.stitch_gap.begin();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 
 #include "dresskit/cloth/cloth_model.h"
@@ -15,38 +16,42 @@ using namespace dresskit::mesh;
 
 namespace dresskit::pattern {
 
-SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const TriangleMesh& body,
-                      const SewOptions& options) {
-  const auto t0 = std::chrono::steady_clock::now();
+namespace {
+
+// One sewing run from the placed panels: drawn at the closing speed, or pulled by seam forces (each
+// stitch's pairs together at most acceleration × the cloth's mass).
+SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const TriangleMesh& panels,
+                   const std::shared_ptr<const MeshDistance>& body, const SewOptions& options,
+                   double acceleration) {
   SewResult r;
-  // The panels as placed: each one is its flat shape turned and moved, so the springs' rest lengths
-  // are the flat pattern's.
-  TriangleMesh panels = placed_mesh(pattern, cut);
   ClothModel model = build_cloth(panels, fabric_by_name(options.fabric));
-  const StitchLaw law{default_stitch_stiffness(model.springs), 1.0};
+  const double k = default_stitch_stiffness(model.springs);
   const int nv = int(cut.placed.rows());
-  for (std::size_t s = 0, k = 0; s < pattern.stitches.size(); ++s) {
+  for (std::size_t s = 0, first = 0; s < pattern.stitches.size(); ++s, first = model.seams.size()) {
     std::vector<std::array<int, 2>> pairs;
-    for (; k < cut.stitch_pairs.size() && cut.stitch_of_pair[k] == int(s); ++k)
-      pairs.push_back(cut.stitch_pairs[k]);
-    if (pairs.empty()) continue;
-    const int first = model.seams.size();
-    add_seam_pairs(model.seams, pairs, nv, law);
-    cap_stitches_by_acceleration(model.seams, first, model.mass, options.stitch_acceleration);
+    for (std::size_t p = first; p < cut.stitch_pairs.size() && cut.stitch_of_pair[p] == int(s); ++p)
+      pairs.push_back(cut.stitch_pairs[p]);
+    add_seam_pairs(model.seams, pairs, nv, {k, 0.0});
+    if (acceleration > 0.0 && !pairs.empty())
+      cap_stitches_by_acceleration(model.seams, int(first), model.mass, acceleration);
   }
   SimulationOptions o;
   o.gravity = options.gravity;
   o.air_damping = options.air_damping;
   o.seam_tolerance = options.tolerance;
+  o.seam_closing_speed = acceleration > 0.0 ? 0.0 : options.closing_speed;
   o.self_collision = options.self_collision;
   o.max_strain_change = options.max_strain_change;
-  if (options.body_collider)
+  if (body)
     o.colliders.push_back(
-        Collider::mesh(std::make_shared<const MeshDistance>(body), options.friction));
+        Collider::mesh(body, acceleration > 0.0 ? options.fallback_friction : options.friction));
   ClothSimulator sim(model, o);
   r.stitch_pairs = model.seams.size();
   r.stopped = "time limit";
-  // Gaps are checked every few steps: sewing stops once every pair is within the tolerance.
+  auto all_sewn = [&] {
+    return std::all_of(sim.sewn().begin(), sim.sewn().end(), [](char c) { return c != 0; });
+  };
+  // Sewing stops once the simulator holds every pair (each came within the tolerance).
   for (;;) {
     const StepResult step = sim.step();
     if (!step.ok) {
@@ -54,14 +59,11 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
       break;
     }
     ++r.steps;
-    if (r.steps % 5 == 0 || sim.time() >= options.max_seconds) {
-      const SeamGaps g = seam_gaps(sim.model().seams, sim.positions(), options.tolerance);
-      if (g.closed == g.stitches) {
-        r.stopped = "closed";
-        break;
-      }
-      if (sim.time() >= options.max_seconds) break;
+    if (all_sewn()) {
+      r.stopped = "closed";
+      break;
     }
+    if (sim.time() >= options.max_seconds) break;
     if (r.steps >= options.max_steps) {
       r.stopped = "step limit";
       break;
@@ -69,26 +71,52 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   }
   r.sewn = sim.positions();
   r.simulated_seconds = sim.time();
-  const SeamGaps g = seam_gaps(sim.model().seams, r.sewn, options.tolerance);
-  r.closed_pairs = g.closed;
-  r.closed = g.closed == g.stitches;
-  r.max_gap = g.max;
   r.stitch_gap.assign(pattern.stitches.size(), 0.0);
-  for (std::size_t k = 0; k < cut.stitch_pairs.size(); ++k) {
-    double& gap = r.stitch_gap[std::size_t(cut.stitch_of_pair[k])];
-    gap = std::max(
-        gap, (r.sewn.row(cut.stitch_pairs[k][0]) - r.sewn.row(cut.stitch_pairs[k][1])).norm());
+  SeamSet held;  // the pairs the simulator holds, all welded
+  for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
+    const double gap = (r.sewn.row(cut.stitch_pairs[p][0]) - r.sewn.row(cut.stitch_pairs[p][1])).norm();
+    double& widest = r.stitch_gap[std::size_t(cut.stitch_of_pair[p])];
+    widest = std::max(widest, gap);
+    r.max_gap = std::max(r.max_gap, gap);
+    r.mean_gap += gap / double(cut.stitch_pairs.size());
+    if (sim.sewn()[p]) {
+      ++r.closed_pairs;
+      add_seam_pairs(held, {cut.stitch_pairs[p]}, nv, {k, 0.0});
+    }
   }
-  r.mean_gap = g.mean;
-  // Weld: closed pairs become single vertices; the panel labels follow their vertices.
+  r.closed = r.closed_pairs == r.stitch_pairs;
+  // Weld: sewn pairs become single vertices; the panel labels follow their vertices.
   Eigen::MatrixX3d V;
   Eigen::MatrixX3i F;
-  weld_seams(r.sewn, model.faces, sim.model().seams, options.tolerance, V, F, r.welded_vertex);
+  weld_seams(r.sewn, model.faces, held, std::numeric_limits<double>::infinity(), V, F,
+             r.welded_vertex);
   r.garment.V = V;
   r.garment.F = F;
   r.garment.labels = Eigen::VectorXi::Constant(V.rows(), -1);
   for (int v = 0; v < nv; ++v) r.garment.labels[r.welded_vertex[v]] = cut.panel_of_vertex[v];
   for (const Panel& p : pattern.panels) r.garment.label_names.push_back(p.name);
+  return r;
+}
+
+}  // namespace
+
+SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const TriangleMesh& body,
+                      const SewOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  // The panels as placed: each one is its flat shape turned and moved, so the springs' rest lengths
+  // are the flat pattern's.
+  const TriangleMesh panels = placed_mesh(pattern, cut);
+  std::shared_ptr<const MeshDistance> distance;
+  if (options.body_collider) distance = std::make_shared<const MeshDistance>(body);
+  SewResult r = sew_once(pattern, cut, panels, distance, options, 0.0);
+  r.method = "drawn";
+  if (!r.closed && options.fallback_acceleration > 0.0) {
+    SewResult pulled = sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration);
+    pulled.method = "seam forces";
+    const int steps = r.steps + pulled.steps;
+    if (pulled.closed || pulled.max_gap < r.max_gap) r = std::move(pulled);
+    r.steps = steps;
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -1,9 +1,11 @@
 // Seams: the stitch force against its energy and the assembled stiffness against the force by
-// finite differences; chains resampled to match; bad input; welding; a sewn tube closes.
+// finite differences; chains resampled to match; bad input; welding; a seam drawn shut at the
+// closing speed goes around a collider between its two sides.
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/scene.h"
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
@@ -138,6 +140,55 @@ TEST(Seams, ClosedStitchesWeldIntoOneVertex) {
   EXPECT_NE(to[2], to[5]);
   EXPECT_NEAR(V(to[1], 2), 0.0002, 1e-15);  // at their mean
   EXPECT_EQ(W.rows(), 2);
+}
+
+// Two square panels stand either side of a sphere, their top edges stitched pair by pair 5 cm below
+// the sphere's top: the straight line between the pairs passes through it. Drawn at the closing
+// speed (no stitch force, no gravity), every pair is sewn, over the cap, with nothing inside the
+// sphere; without a closing speed, stitches without a force stay open.
+TEST(Seams, ClosingSpeedSewsAroundAColliderBetweenTheSides) {
+  const double margin = 0.002, top = 0.05;
+  const Eigen::Vector3d centre(0.0, -0.15, 0.0);
+  const double radius = top - centre.y();  // the cap's top at y = top
+  mesh::TriangleMesh front = make_grid({0.2, 0.2}, {11, 11}, {0.0, -0.1, 0.22}, {0, 0, 1});
+  const mesh::TriangleMesh back = make_grid({0.2, 0.2}, {11, 11}, {0.0, -0.1, -0.22}, {0, 0, -1});
+  const int n = static_cast<int>(front.V.rows());
+  front.V.conservativeResize(2 * n, 3);
+  front.V.bottomRows(n) = back.V;
+  front.F.conservativeResize(front.F.rows() + back.F.rows(), 3);
+  front.F.bottomRows(back.F.rows()) = back.F.array() + n;
+  ClothModel model = build_cloth(front, fabric_by_name("gray-interlock"));
+  // Pair each top-edge particle of the front with the back's at the same x.
+  std::vector<std::array<int, 2>> pairs;
+  for (int i = 0; i < n; ++i) {
+    if (std::abs(front.V(i, 1)) > 1e-9) continue;
+    for (int j = n; j < 2 * n; ++j)
+      if (std::abs(front.V(j, 1)) < 1e-9 && std::abs(front.V(j, 0) - front.V(i, 0)) < 1e-9)
+        pairs.push_back({i, j});
+  }
+  ASSERT_EQ(pairs.size(), 11u);
+  add_seam_pairs(model.seams, pairs, 2 * n, {default_stitch_stiffness(model.springs), 0.0});
+  SimulationOptions o;
+  o.gravity.setZero();
+  o.air_damping = 2.0;
+  o.collision_margin = margin;
+  o.colliders.push_back(Collider::sphere(centre, radius, 0.0));
+  o.seam_closing_speed = 0.5;
+  ClothSimulator sim(model, o);
+  for (int step = 0; step < 240; ++step) ASSERT_TRUE(sim.step().ok);
+  for (const char sewn : sim.sewn()) EXPECT_TRUE(sewn);
+  for (const auto& [a, b] : pairs) {
+    const Eigen::Vector3d mid = 0.5 * (sim.positions().row(a) + sim.positions().row(b)).transpose();
+    EXPECT_LE((sim.positions().row(a) - sim.positions().row(b)).norm(), 0.002);
+    EXPECT_GE((mid - centre).norm(), radius) << mid.transpose();  // over the sphere, outside it
+  }
+  for (Eigen::Index p = 0; p < sim.positions().rows(); ++p)
+    EXPECT_GE((sim.positions().row(p).transpose() - centre).norm(), radius + margin - 1e-3) << p;
+
+  o.seam_closing_speed = 0.0;
+  ClothSimulator unsewn(model, o);
+  for (int step = 0; step < 240; ++step) ASSERT_TRUE(unsewn.step().ok);
+  for (const char sewn : unsewn.sewn()) EXPECT_FALSE(sewn);
 }
 
 }  // namespace

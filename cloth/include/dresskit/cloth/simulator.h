@@ -104,6 +104,11 @@ struct SimulationOptions {
   /// A stitch (ClothModel::seams) that comes within this distance is sewn: from then on the
   /// constraint phase holds its two points together [m].
   double seam_tolerance = 0.001;
+  /// Stitches not yet sewn are also drawn together in the constraint phase, each side by half this
+  /// speed × dt per step towards where the two are to meet: their midpoint, or, where that lies in a
+  /// collider, the nearest way around it (0: by their seam forces alone) [m/s]. The moves count in
+  /// the particles' velocities, so the cloth around a stitch follows it.
+  double seam_closing_speed = 0.0;
   double spring_damping = 0.0;  ///< β in kd = β k_rest along each spring [s] (Rayleigh stiffness damping)
   bool dynamic_stiffness = false;  ///< k·L/L0 beyond (1 + strain_limit) L0
   bool strain_limiting = true;     ///< position correction after each step
@@ -266,7 +271,9 @@ class ClothSimulator {
   void keep_layer_order(StepResult& r);
   /// Sews the stitches that have come within the tolerance and holds the sewn ones closed; returns
   /// the widest gap of a sewn stitch before it was closed [m].
-  double sew(StepResult& r);
+  double sew(StepResult& r, bool draw);
+  void draw_stitch(int k, double reach);
+  Eigen::Vector3d meeting_point(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
   void move_pins(double t);
   /// Finds the particles in the colliders' penalty zones at the current positions (contacts_).
   void find_contacts();

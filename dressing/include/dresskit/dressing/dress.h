@@ -9,6 +9,7 @@
 //   // r.garments[0].dressed: the settled shirt [m], in r.garments[0].mesh's vertex order
 #include <functional>
 #include <optional>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -98,10 +99,18 @@ struct SewnPattern {
   /// vertices), and each one's panel: areas per panel at any positions.
   Eigen::MatrixX3i panel_faces;
   Eigen::VectorXi panel_of_face;
+  /// Each edge of the panels' triangles (garment vertex indices, smaller first) and its length in
+  /// the flat pattern [m] (the mean of both sides' along a seam): the settle's rest lengths.
+  std::vector<std::array<int, 2>> flat_edges;
+  std::vector<double> flat_edge_length;
   int stitches = 0;        ///< the pattern's stitches (seams, darts, pleats)
-  int stitch_pairs = 0;    ///< matching point pairs sewn
-  double max_gap = 0.0;    ///< largest stitch pair distance when sewing stopped (then welded) [m]
-  bool closed = false;     ///< every pair within DressOptions::seam_tolerance
+  int stitch_pairs = 0;    ///< matching point pairs to sew
+  int sewn_pairs = 0;      ///< of those, sewn and welded
+  std::string sew_method;  ///< "drawn" or "seam forces" (pattern::SewResult::method)
+  /// Largest stitch pair distance when sewing stopped, before welding [m]: a pair sewn (held by the
+  /// simulator) may be left slightly apart by the collision passes after it.
+  double max_gap = 0.0;
+  bool closed = false;     ///< every pair sewn: came within DressOptions::seam_tolerance, then held
   int triangles = 0;
   double cut_seconds = 0.0, sew_seconds = 0.0;  ///< wall-clock
   double sew_simulated = 0.0;                   ///< simulated time sewing took [s]

@@ -1,11 +1,12 @@
 #pragma once
-// Sewing: the cut panels, placed around the body, pulled together by their stitches' seam forces in
-// the cloth simulator (methods.md §3: F = k (p2 − p1) up to a cap) with the body as a collider,
-// until every stitch pair is within the tolerance; then welded into one garment mesh.
+// Sewing: the cut panels, placed around the body, drawn together along their stitches in the cloth
+// simulator at a set closing speed, each pair towards its midpoint or the nearest way around the
+// body between its two sides, with the body as a collider, until every stitch pair has come within
+// the tolerance (and is held there); then welded into one garment mesh.
 //
 //   const Pattern p = read_pattern("shirt_specification.json");
 //   const SewResult r = sew_pattern(p, cut_pattern(p), body);
-//   // r.garment: one mesh [m], labels = panels; r.max_gap ≤ 1 mm when r.closed
+//   // r.garment: one mesh [m], labels = panels; every pair welded when r.closed
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -17,40 +18,53 @@ namespace dresskit::pattern {
 
 struct SewOptions {
   std::string fabric = "gray-interlock";  ///< a built-in fabric (docs/cloth.md)
-  /// A stitch pair is closed, then held and welded, within this distance [m].
+  /// A stitch pair is sewn, then held and welded, once it comes within this distance [m].
   double tolerance = 0.001;
-  /// Each stitch's pairs together pull with at most this acceleration × the whole cloth's mass
-  /// [m/s²]; at 40 a seam closes 30 cm in about a third of a simulated second.
-  double stitch_acceleration = 40.0;
+  /// Each stitch pair not yet sewn is drawn together at this speed [m/s], towards its midpoint or,
+  /// where that lies inside the body, the nearest way around it
+  /// (SimulationOptions::seam_closing_speed): at 0.5 a seam 40 cm open closes in under a second.
+  double closing_speed = 0.5;
   /// Gravity while sewing [m/s²]: none by default, so that panels keep the places the pattern gives
   /// them while their seams close (settling afterwards drapes them).
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();
-  double air_damping = 2.0;  ///< [1/s], damps the seams' pull so that panels do not overshoot
-  double max_seconds = 2.0;  ///< simulated time at most [s]
-  /// Steps at most: where seams cannot close the adaptive step shrinks, and this bounds the time
-  /// spent (600: two and a half times the steps of max_seconds at the simulator's full 1/120 s).
+  double air_damping = 2.0;  ///< [1/s], so that panels do not overshoot
+  double max_seconds = 3.0;  ///< simulated time at most [s]
+  /// Steps at most: where the adaptive step shrinks, this bounds the time spent (600: one and a
+  /// half times the steps of max_seconds at the simulator's full 1/120 s).
   int max_steps = 600;
-  /// The simulator's adaptive step (SimulationOptions::max_strain_change): while seams pull edges
+  /// The simulator's adaptive step (SimulationOptions::max_strain_change): while seams are drawn
   /// across the body, strain changes fast by design, and the default 0.05 shrank the step to
-  /// 3e-5 s; at 1 the step stays at 1/120 s and strain limiting keeps the fabric within 10 %.
+  /// 3e-5 s; at 1 the step stays near 1/120 s and strain limiting keeps the fabric within 10 %.
   double max_strain_change = 1.0;
   bool body_collider = true;  ///< the body keeps the panels out while they close around it
-  double friction = 0.5;      ///< between the panels and the body while sewing [unitless]
-  /// Cloth–cloth collisions while sewing: panels pulled across each other do not pass through.
+  /// Between the panels and the body while sewing [unitless]: none, so that panels slide into
+  /// place around the body (at 0.5 the shirt's shoulder seams stayed 2 cm open).
+  double friction = 0.0;
+  /// Cloth–cloth collisions while sewing: panels drawn across each other do not pass through.
   bool self_collision = true;
+  /// Where drawing leaves pairs unsewn, the panels are sewn again from their places by seam forces
+  /// instead, each stitch's pairs together pulling with at most this acceleration × the cloth's
+  /// mass [m/s²], with fallback_friction against the body; the closer of the two results is kept
+  /// (0: no second try).
+  double fallback_acceleration = 40.0;
+  double fallback_friction = 0.5;  ///< [unitless]
 };
 
 struct SewResult {
-  bool closed = false;   ///< every stitch pair within the tolerance
-  int stitch_pairs = 0;  ///< matching point pairs sewn
-  int closed_pairs = 0;
-  double max_gap = 0.0;            ///< largest stitch pair distance at the end [m]
+  bool closed = false;   ///< every stitch pair sewn (came within the tolerance, then held)
+  int stitch_pairs = 0;  ///< matching point pairs to sew
+  int closed_pairs = 0;  ///< of those, sewn (and welded)
+  /// Largest stitch pair distance at the end, before welding [m]: a sewn pair is held together by
+  /// the simulator's constraint phase, and the collision passes after it may leave it slightly
+  /// apart.
+  double max_gap = 0.0;
   double mean_gap = 0.0;           ///< [m]
   std::vector<double> stitch_gap;  ///< per stitch of the pattern, its largest pair distance [m]
-  int steps = 0;
-  double simulated_seconds = 0.0;
+  int steps = 0;                   ///< of both tries when the fallback ran
+  double simulated_seconds = 0.0;  ///< of the result kept
   double seconds = 0.0;   ///< wall-clock, the body's distance field included
   std::string stopped;    ///< "closed", "time limit", "step limit" or the simulator's failure
+  std::string method;     ///< "drawn" (at the closing speed) or "seam forces" (the fallback)
   Eigen::MatrixX3d sewn;  ///< #V×3 every cut vertex at the end (CutPattern's order) [m]
   /// The welded garment [m]: closed pairs joined into single vertices, faces turning as cut;
   /// labels: the panel of each vertex (label_names: the panel names).
