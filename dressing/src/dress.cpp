@@ -407,6 +407,11 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         report += (report.empty() ? "" : "; ") + g.name + " already on the body" + as_given;
         continue;
       }
+      // A sewn pattern that did not end on this body is not a garment placement can rescue: its
+      // panels' places are for another body.
+      if (g.from_pattern)
+        throw InputError(g.file.path + ": sewn around this body, the garment is not on it" + as_given +
+                         ": the pattern is placed for another body");
       report += (report.empty() ? "" : "; ") + g.name + " not on the body as given" + as_given;
       to_place.push_back(k);
       first.push_back(outfit.V.rows());

@@ -1,8 +1,10 @@
 #include "pattern_garment.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
+#include "dresskit/mesh/errors.h"
 #include "dresskit/pattern/cut.h"
 #include "dresskit/pattern/pattern.h"
 #include "dresskit/pattern/sew.h"
@@ -25,7 +27,13 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   pattern::SewOptions sew_options;
   sew_options.fabric = d.fabric;
   sew_options.tolerance = options.seam_tolerance;
-  const pattern::SewResult sewn = pattern::sew_pattern(p, cut, body, sew_options);
+  const pattern::SewResult sewn = [&] {
+    try {
+      return pattern::sew_pattern(p, cut, body, sew_options);
+    } catch (const InputError& e) {
+      throw InputError(g.file.path + ": " + e.what());
+    }
+  }();
   SewnPattern& s = d.pattern;
   d.from_pattern = true;
   d.mesh = sewn.garment;
@@ -74,6 +82,12 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
     const auto widest =
         std::max_element(sewn.stitch_gap.begin(), sewn.stitch_gap.end()) - sewn.stitch_gap.begin();
     const pattern::Stitch& st = p.stitches[static_cast<std::size_t>(widest)];
+    const double gap = sewn.stitch_gap[static_cast<std::size_t>(widest)];
+    if (gap > options.max_open_seam)
+      throw InputError(g.file.path + ": stitch " + std::to_string(widest) + " (" +
+                       p.edge_name(st.a.panel, st.a.edge) + " to " + p.edge_name(st.b.panel, st.b.edge) +
+                       ") is still " + std::to_string(int(std::lround(1e3 * gap))) + " mm open after sewing (" +
+                       sewn.stopped + "): the pattern does not sew on this body; is it placed for another?");
     s.warnings.push_back(
         g.file.path + ": stitch " + std::to_string(widest) + " (" +
         p.edge_name(st.a.panel, st.a.edge) + " to " + p.edge_name(st.b.panel, st.b.edge) +

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <limits>
 #include <memory>
 
@@ -10,6 +11,7 @@
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/simulator.h"
+#include "dresskit/mesh/errors.h"
 
 using namespace dresskit::cloth;
 using namespace dresskit::mesh;
@@ -52,6 +54,7 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
     return std::all_of(sim.sewn().begin(), sim.sewn().end(), [](char c) { return c != 0; });
   };
   // Sewing stops once the simulator holds every pair (each came within the tolerance).
+  const auto start = std::chrono::steady_clock::now();
   for (;;) {
     const StepResult step = sim.step();
     if (!step.ok) {
@@ -66,6 +69,12 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
     if (sim.time() >= options.max_seconds) break;
     if (r.steps >= options.max_steps) {
       r.stopped = "step limit";
+      break;
+    }
+    if (options.max_wall_seconds > 0.0 &&
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+            options.max_wall_seconds) {
+      r.stopped = "wall-clock limit";
       break;
     }
   }
@@ -107,7 +116,20 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   // are the flat pattern's.
   const TriangleMesh panels = placed_mesh(pattern, cut);
   std::shared_ptr<const MeshDistance> distance;
-  if (options.body_collider) distance = std::make_shared<const MeshDistance>(body);
+  if (options.body_collider) {
+    distance = std::make_shared<const MeshDistance>(body);
+    // Panels that the pattern places inside this body cannot be sewn around it.
+    int inside = 0;
+    for (Eigen::Index v = 0; v < panels.V.rows(); ++v) {
+      Eigen::Vector3d n;
+      inside += distance->distance(panels.V.row(v).transpose(), &n) < -options.inside_depth;
+    }
+    if (inside > options.max_inside_fraction * double(panels.V.rows()))
+      throw InputError("the pattern places " + std::to_string(inside) + " of its " +
+                       std::to_string(panels.V.rows()) + " panel points more than " +
+                       std::to_string(int(std::lround(1e3 * options.inside_depth))) +
+                       " mm inside the body: it is placed for another body");
+  }
   SewResult r = sew_once(pattern, cut, panels, distance, options, 0.0);
   r.method = "drawn";
   if (!r.closed && options.fallback_acceleration > 0.0) {

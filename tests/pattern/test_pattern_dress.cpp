@@ -161,5 +161,28 @@ TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad_out")));
 }
 
+// A pattern whose panels are placed two metres beside the body sews shut in the air: the garment is
+// not on the body, and the pattern is refused as placed for another body (exit 2, nothing written).
+TEST(PatternDressCli, APatternPlacedForAnotherBodyIsRefused) {
+  DRESSKIT_REQUIRE_DATA();
+  using namespace test::cli;
+  test::TempDir dir;
+  std::string far = test::two_panel_pattern();
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"[-20, 80, 15]", "[180, 80, 15]"},
+                                 {"[20, 80, -15]", "[220, 80, -15]"}}) {
+    const auto at = far.find(from);
+    ASSERT_NE(at, std::string::npos);
+    far.replace(at, from.size(), to);
+  }
+  write(dir.file("far.json"), far);
+  const CliRun r = run(dir, "dress " + test::data_dir() + "/bodies/gc_mean_all.obj " +
+                                dir.file("far.json") + " -o " + dir.file("out"));
+  EXPECT_EQ(r.code, 2) << r.err;
+  EXPECT_NE(r.err.find("far.json: sewn around this body, the garment is not on it"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("the pattern is placed for another body"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
 }  // namespace
 }  // namespace dresskit

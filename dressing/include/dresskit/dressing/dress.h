@@ -54,6 +54,10 @@ struct DressOptions {
   /// Garments given as sewing patterns (.json, docs/pattern.md) are cut into triangles of this edge
   /// length [m], and their stitches are closed to `seam_tolerance` [m] before settling.
   double pattern_edge_length = 0.02, seam_tolerance = 0.001;
+  /// A pattern whose sewing leaves a stitch pair further apart than this [m] is refused (InputError
+  /// naming the stitch): its garment is not one (a pattern placed for another body, say). Seams
+  /// open less are a warning.
+  double max_open_seam = 0.05;
   bool settle = true;  ///< false: stop after placement (dressed = placed)
   /// Simulated time settling takes at most [s]; 0 = the quality's (0.5, 1 or 2 s).
   double settle_seconds = 0.0;

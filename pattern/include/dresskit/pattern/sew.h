@@ -32,6 +32,10 @@ struct SewOptions {
   /// Steps at most: where the adaptive step shrinks, this bounds the time spent (600: one and a
   /// half times the steps of max_seconds at the simulator's full 1/120 s).
   int max_steps = 600;
+  /// Wall-clock seconds at most for each try (0: no bound): where panels tangle, cloth–cloth
+  /// collisions can take a second a step, and a pattern that does not sew is told in minutes
+  /// rather than tens of them.
+  double max_wall_seconds = 60.0;
   /// The simulator's adaptive step (SimulationOptions::max_strain_change): while seams are drawn
   /// across the body, strain changes fast by design, and the default 0.05 shrank the step to
   /// 3e-5 s; at 1 the step stays near 1/120 s and strain limiting keeps the fabric within 10 %.
@@ -48,6 +52,11 @@ struct SewOptions {
   /// (0: no second try).
   double fallback_acceleration = 40.0;
   double fallback_friction = 0.5;  ///< [unitless]
+  /// The pattern's placement must suit the body: more than this share of the placed panels' points
+  /// deeper than inside_depth [m] inside the body is an InputError (a pattern placed for another
+  /// body; sewing from inside a body does not close and takes minutes).
+  double max_inside_fraction = 0.01;
+  double inside_depth = 0.01;
 };
 
 struct SewResult {
@@ -63,7 +72,8 @@ struct SewResult {
   int steps = 0;                   ///< of both tries when the fallback ran
   double simulated_seconds = 0.0;  ///< of the result kept
   double seconds = 0.0;   ///< wall-clock, the body's distance field included
-  std::string stopped;    ///< "closed", "time limit", "step limit" or the simulator's failure
+  /// "closed", "time limit", "step limit", "wall-clock limit" or the simulator's failure
+  std::string stopped;
   std::string method;     ///< "drawn" (at the closing speed) or "seam forces" (the fallback)
   Eigen::MatrixX3d sewn;  ///< #V×3 every cut vertex at the end (CutPattern's order) [m]
   /// The welded garment [m]: closed pairs joined into single vertices, faces turning as cut;
@@ -73,7 +83,8 @@ struct SewResult {
 };
 
 /// Sews the cut pattern around the body (any mesh in metres; with body_collider false it may be
-/// empty). Throws InputError for an unknown fabric.
+/// empty). Throws InputError for an unknown fabric, or panels placed inside the body
+/// (SewOptions::max_inside_fraction).
 SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const mesh::TriangleMesh& body,
                       const SewOptions& options = {});
 
