@@ -147,8 +147,8 @@ Eigen::Vector3d ClothSimulator::meeting_point(const Eigen::Vector3d& a, const Ei
   if (clearance(mid) >= 0.0) return mid;
   const Eigen::Vector3d u = (b - a).normalized();
   const Eigen::Vector3d e1 = u.unitOrthogonal(), e2 = u.cross(e1);
-  const double reach = 0.5, step = 0.002;  // [m]
-  double best = reach;
+  const double farthest = 0.5, step = 0.002;  // [m]: searched up to, and the smallest stride
+  double best = farthest;
   Eigen::Vector3d meet = mid;
   for (int k = 0; k < 8; ++k) {
     const double angle = k * M_PI / 4.0;
