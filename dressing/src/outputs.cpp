@@ -111,6 +111,8 @@ json pattern_json(const SewnPattern& p) {
           {"panels", panels},
           {"pattern",
            {{"triangles", p.triangles},
+            {"moved_to_body_m", {p.moved_by.x(), p.moved_by.y(), p.moved_by.z()}},
+            {"panels_moved_out", p.panels_moved_out},
             {"cut_seconds", p.cut_seconds},
             {"sew_seconds", p.sew_seconds},
             {"sew_simulated_seconds", p.sew_simulated},

@@ -71,6 +71,8 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   s.sew_method = sewn.method;
   s.max_gap = sewn.max_gap;
   s.closed = sewn.closed;
+  s.moved_by = sewn.moved_by;
+  s.panels_moved_out = sewn.panels_moved_out;
   s.triangles = static_cast<int>(sewn.garment.F.rows());
   s.cut_seconds = cut.seconds;
   s.sew_seconds = sewn.seconds;
@@ -87,7 +89,9 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
       throw InputError(g.file.path + ": stitch " + std::to_string(widest) + " (" +
                        p.edge_name(st.a.panel, st.a.edge) + " to " + p.edge_name(st.b.panel, st.b.edge) +
                        ") is still " + std::to_string(int(std::lround(1e3 * gap))) + " mm open after sewing (" +
-                       sewn.stopped + "): the pattern does not sew on this body; is it placed for another?");
+                       sewn.stopped + "): the pattern does not sew on this body" +
+                       (sewn.moved_by.isZero() ? std::string("; is it placed for another?")
+                                               : std::string(" (carried from the body it is placed for)")));
     s.warnings.push_back(
         g.file.path + ": stitch " + std::to_string(widest) + " (" +
         p.edge_name(st.a.panel, st.a.edge) + " to " + p.edge_name(st.b.panel, st.b.edge) +

@@ -10,6 +10,7 @@
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/seams.h"
+#include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/mesh/errors.h"
 
@@ -83,7 +84,8 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   r.stitch_gap.assign(pattern.stitches.size(), 0.0);
   SeamSet held;  // the pairs the simulator holds, all welded
   for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
-    const double gap = (r.sewn.row(cut.stitch_pairs[p][0]) - r.sewn.row(cut.stitch_pairs[p][1])).norm();
+    const double gap =
+        (r.sewn.row(cut.stitch_pairs[p][0]) - r.sewn.row(cut.stitch_pairs[p][1])).norm();
     double& widest = r.stitch_gap[std::size_t(cut.stitch_of_pair[p])];
     widest = std::max(widest, gap);
     r.max_gap = std::max(r.max_gap, gap);
@@ -107,17 +109,98 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   return r;
 }
 
+// The panels moved together from the pattern's body's frame to this body's
+// (SewOptions::pattern_body): by the difference of the origins, and up or down so that their
+// centroid's height over the floor scales with the bodies' heights. One move for all keeps the
+// panels' places relative to each other: seams that meet as placed still meet.
+Eigen::RowVector3d move_panels(TriangleMesh& panels, const BodyFrame& from, const BodyFrame& to) {
+  const Eigen::RowVector3d c = panels.V.colwise().mean();
+  Eigen::RowVector3d d = (to.origin - from.origin).transpose();
+  d.y() += (to.height / from.height - 1.0) * (c.y() - from.origin.y());
+  panels.V.rowwise() += d;
+  return d;
+}
+
+// Panels carried to a larger body may lie in it: each such panel is moved out along its normal
+// (its faces point away from the body) in steps of the clearance until every point of it is that
+// far outside, or half a metre out. Returns the panels moved.
+int move_panels_out(TriangleMesh& panels, const CutPattern& cut, int count,
+                    const MeshDistance& body, double clearance) {
+  Eigen::MatrixX3d normal = Eigen::MatrixX3d::Zero(count, 3);
+  for (Eigen::Index f = 0; f < panels.F.rows(); ++f) {
+    const Eigen::RowVector3d a = panels.V.row(panels.F(f, 0));
+    normal.row(cut.panel_of_face[f]) +=
+        (panels.V.row(panels.F(f, 1)) - a).cross(panels.V.row(panels.F(f, 2)) - a);
+  }
+  int moved = 0;
+  for (int q = 0; q < count; ++q) {
+    const Eigen::RowVector3d n = normal.row(q).normalized();
+    auto clear = [&](double t) {
+      for (Eigen::Index v = 0; v < panels.V.rows(); ++v) {
+        Eigen::Vector3d unused;
+        if (panels.labels[v] == q &&
+            body.distance((panels.V.row(v) + t * n).transpose(), &unused) < clearance)
+          return false;
+      }
+      return true;
+    };
+    double t = 0.0;
+    while (t < 0.5 && !clear(t)) t += clearance;
+    if (t == 0.0) continue;
+    for (Eigen::Index v = 0; v < panels.V.rows(); ++v)
+      if (panels.labels[v] == q) panels.V.row(v) += t * n;
+    ++moved;
+  }
+  return moved;
+}
+
 }  // namespace
+
+BodyFrame body_frame(const TriangleMesh& body) {
+  BodyFrame f;
+  const double floor = body.V.col(1).minCoeff();
+  f.height = body.V.col(1).maxCoeff() - floor;
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (Eigen::Index v = 0; v < body.V.rows(); ++v) {
+    const double y = body.V(v, 1) - floor;
+    if (y < 0.55 * f.height || y > 0.7 * f.height) continue;
+    lo = lo.cwiseMin(body.V.row(v).transpose());
+    hi = hi.cwiseMax(body.V.row(v).transpose());
+  }
+  if (!(lo.x() <= hi.x())) {  // no vertex in that band (a coarse mesh): its whole bounding box
+    lo = body.V.colwise().minCoeff().transpose();
+    hi = body.V.colwise().maxCoeff().transpose();
+  }
+  f.origin = 0.5 * (lo + hi);
+  f.origin.y() = floor;
+  return f;
+}
 
 SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const TriangleMesh& body,
                       const SewOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   // The panels as placed: each one is its flat shape turned and moved, so the springs' rest lengths
   // are the flat pattern's.
-  const TriangleMesh panels = placed_mesh(pattern, cut);
+  TriangleMesh panels = placed_mesh(pattern, cut);
+  // Carried to this body where it stands elsewhere than the pattern's or is of another height.
+  Eigen::RowVector3d moved = Eigen::RowVector3d::Zero();
+  bool carried = false;
+  int moved_out = 0;
+  if (body.V.rows() > 0) {
+    const BodyFrame here = body_frame(body), from = options.pattern_body;
+    if (!(from.height > 0.0))
+      throw InputError("the pattern's body height " + std::to_string(from.height) +
+                       " m is not positive");
+    carried = (here.origin - from.origin).norm() > options.frame_tolerance ||
+              std::abs(here.height / from.height - 1.0) > 0.02;
+    if (carried) moved = move_panels(panels, from, here);
+  }
   std::shared_ptr<const MeshDistance> distance;
   if (options.body_collider) {
     distance = std::make_shared<const MeshDistance>(body);
+    if (carried)
+      moved_out =
+          move_panels_out(panels, cut, int(pattern.panels.size()), *distance, options.clearance);
     // Panels that the pattern places inside this body cannot be sewn around it.
     int inside = 0;
     for (Eigen::Index v = 0; v < panels.V.rows(); ++v) {
@@ -133,12 +216,21 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   SewResult r = sew_once(pattern, cut, panels, distance, options, 0.0);
   r.method = "drawn";
   if (!r.closed && options.fallback_acceleration > 0.0) {
-    SewResult pulled = sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration);
+    SewResult pulled =
+        sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration);
     pulled.method = "seam forces";
     const int steps = r.steps + pulled.steps;
-    if (pulled.closed || pulled.max_gap < r.max_gap) r = std::move(pulled);
+    // Kept where it closes, or comes closer without crossing itself more (seam forces can tangle
+    // the panels where drawing left a seam open).
+    const auto crossings = [](const SewResult& s) {
+      return count_intersections(s.garment.V, s.garment.F);
+    };
+    if (pulled.closed || (pulled.max_gap < r.max_gap && crossings(pulled) <= crossings(r)))
+      r = std::move(pulled);
     r.steps = steps;
   }
+  r.moved_by = moved.transpose();
+  r.panels_moved_out = moved_out;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return r;
 }

@@ -1,5 +1,6 @@
-// Sewing on its own: two rectangles either side of a box are drawn shut around it and welded; a
-// step limit leaves pairs open and unwelded; panels placed inside the body are refused.
+// Sewing on its own: two rectangles either side of a box are drawn shut around it and welded, also
+// around a box standing elsewhere and a larger one; a step limit leaves pairs open and unwelded;
+// panels placed inside the body they are placed for are refused.
 #include <gtest/gtest.h>
 
 #include "dresskit/mesh/errors.h"
@@ -21,10 +22,23 @@ mesh::TriangleMesh box_between_panels() {
   return box;
 }
 
+// The pattern is placed for that box: it is the pattern's body.
+SewOptions on_the_box() {
+  SewOptions o;
+  o.pattern_body = body_frame(box_between_panels());
+  return o;
+}
+
+// No garment vertex within `half` of the box's centre c along every axis (none in the box).
+void expect_around(const SewResult& r, const Eigen::Vector3d& c, double half) {
+  for (Eigen::Index v = 0; v < r.garment.V.rows(); ++v)
+    EXPECT_GT((r.garment.V.row(v).transpose() - c).cwiseAbs().maxCoeff(), half) << v;
+}
+
 TEST(PatternSew, TwoPanelsAroundABoxAreDrawnShutAndWelded) {
   const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
   const CutPattern cut = cut_pattern(p, {0.04});
-  const SewResult r = sew_pattern(p, cut, box_between_panels());
+  const SewResult r = sew_pattern(p, cut, box_between_panels(), on_the_box());
   EXPECT_TRUE(r.closed) << r.stopped;
   EXPECT_EQ(r.method, "drawn");
   EXPECT_EQ(r.stopped, "closed");
@@ -33,10 +47,55 @@ TEST(PatternSew, TwoPanelsAroundABoxAreDrawnShutAndWelded) {
   EXPECT_LE(r.max_gap, 0.002);
   // Each pair welded into one vertex; the box inside the tube, none of the garment in the box.
   EXPECT_EQ(r.garment.V.rows(), cut.placed.rows() - r.stitch_pairs);
+  expect_around(r, Eigen::Vector3d(0, 1.1, 0), 0.1);
+  EXPECT_EQ(r.moved_by, Eigen::Vector3d::Zero());
+}
+
+// The same box standing 40 cm lower and 30 cm to the side: the panels follow it and close around
+// it.
+TEST(PatternSew, PanelsFollowABodyStandingElsewhere) {
+  const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
+  const CutPattern cut = cut_pattern(p, {0.04});
+  mesh::TriangleMesh box = box_between_panels();
+  box.V.rowwise() += Eigen::RowVector3d(0.3, -0.4, 0.0);
+  const SewResult r = sew_pattern(p, cut, box, on_the_box());
+  EXPECT_TRUE(r.closed) << r.stopped;
+  EXPECT_NEAR(r.moved_by.x(), 0.3, 1e-9);
+  EXPECT_NEAR(r.moved_by.y(), -0.4, 1e-9);  // same height: no scaling of the centroid's height
+  EXPECT_NEAR(r.moved_by.z(), 0.0, 1e-9);
+  EXPECT_EQ(r.panels_moved_out, 0);
+  expect_around(r, Eigen::Vector3d(0.3, 0.7, 0), 0.1);
+}
+
+// A box 5 cm wide and 32 cm deep (the panels, 15 cm from its centre, lie in it), standing 5 cm to
+// the side: each panel is moved out along its normal until 5 mm clear, then the two are sewn around
+// it.
+TEST(PatternSew, PanelsCarriedIntoALargerBodyAreMovedOutOfIt) {
+  const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
+  const CutPattern cut = cut_pattern(p, {0.04});
+  mesh::TriangleMesh box = box_between_panels();
+  box.V.col(0) *= 0.25;
+  box.V.col(2) *= 1.6;
+  box.V.col(0).array() += 0.05;
+  const SewResult r = sew_pattern(p, cut, box, on_the_box());
+  EXPECT_EQ(r.panels_moved_out, 2);
+  EXPECT_TRUE(r.closed) << r.stopped;
   for (Eigen::Index v = 0; v < r.garment.V.rows(); ++v) {
-    const Eigen::Vector3d x = r.garment.V.row(v).transpose() - Eigen::Vector3d(0, 1.1, 0);
-    EXPECT_GT(x.cwiseAbs().maxCoeff(), 0.1) << v;
+    const Eigen::Vector3d x = r.garment.V.row(v).transpose() - Eigen::Vector3d(0.05, 1.1, 0);
+    EXPECT_TRUE(std::abs(x.x()) > 0.025 || std::abs(x.y()) > 0.1 || std::abs(x.z()) > 0.16) << v;
   }
+}
+
+// A box's frame: the floor at its lowest point, its height, below its centre (no vertex of the box
+// lies between 55 % and 70 % of its height: its whole bounding box counts).
+TEST(PatternSew, BodyFrameOfABox) {
+  mesh::TriangleMesh box = fixtures::cube(1.0);  // y −0.5…0.5: floor −0.5, 1 m tall
+  box.V.col(2).array() += 0.25;
+  const BodyFrame f = body_frame(box);
+  EXPECT_NEAR(f.height, 1.0, 1e-12);
+  EXPECT_NEAR(f.origin.y(), -0.5, 1e-12);
+  EXPECT_NEAR(f.origin.x(), 0.0, 1e-12);
+  EXPECT_NEAR(f.origin.z(), 0.25, 1e-12);
 }
 
 TEST(PatternSew, AStepLimitLeavesPairsOpenAndUnwelded) {
@@ -45,6 +104,7 @@ TEST(PatternSew, AStepLimitLeavesPairsOpenAndUnwelded) {
   SewOptions o;
   o.max_steps = 2;
   o.fallback_acceleration = 0.0;
+  o.pattern_body = body_frame(box_between_panels());
   const SewResult r = sew_pattern(p, cut, box_between_panels(), o);
   EXPECT_FALSE(r.closed);
   EXPECT_EQ(r.stopped, "step limit");
@@ -62,7 +122,9 @@ TEST(PatternSew, PanelsPlacedInsideTheBodyAreRefused) {
   EXPECT_THROW(
       {
         try {
-          sew_pattern(p, cut, big);
+          SewOptions o;
+          o.pattern_body = body_frame(big);  // placed for this body, in it
+          sew_pattern(p, cut, big, o);
         } catch (const InputError& e) {
           EXPECT_NE(std::string(e.what()).find("inside the body: it is placed for another body"),
                     std::string::npos)

@@ -115,6 +115,11 @@ struct SewnPattern {
   /// simulator) may be left slightly apart by the collision passes after it.
   double max_gap = 0.0;
   bool closed = false;     ///< every pair sewn: came within DressOptions::seam_tolerance, then held
+  /// How far the panels were moved from the pattern's places to this body before sewing [m] (zero
+  /// on the body the pattern is placed for; pattern::SewOptions::pattern_body), and how many were
+  /// then moved out of it along their normals.
+  Eigen::Vector3d moved_by = Eigen::Vector3d::Zero();
+  int panels_moved_out = 0;
   int triangles = 0;
   double cut_seconds = 0.0, sew_seconds = 0.0;  ///< wall-clock
   double sew_simulated = 0.0;                   ///< simulated time sewing took [s]

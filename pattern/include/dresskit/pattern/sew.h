@@ -1,8 +1,9 @@
 #pragma once
-// Sewing: the cut panels, placed around the body, drawn together along their stitches in the cloth
-// simulator at a set closing speed, each pair towards its midpoint or the nearest way around the
-// body between its two sides, with the body as a collider, until every stitch pair has come within
-// the tolerance (and is held there); then welded into one garment mesh.
+// Sewing: the cut panels, placed around the body (carried to it from the body the pattern is
+// placed for, where that stands elsewhere or is of another height), drawn together along their
+// stitches in the cloth simulator at a set closing speed, each pair towards its midpoint or the
+// nearest way around the body between its two sides, with the body as a collider, until every
+// stitch pair has come within the tolerance (and is held there); then welded into one garment mesh.
 //
 //   const Pattern p = read_pattern("shirt_specification.json");
 //   const SewResult r = sew_pattern(p, cut_pattern(p), body);
@@ -15,6 +16,18 @@
 #include "dresskit/pattern/cut.h"
 
 namespace dresskit::pattern {
+
+/// Where a body stands: GarmentCode places a pattern's panels around a body standing on y = 0 with
+/// its torso centred on x = z = 0, facing +z, 1.72 m tall (its mean body).
+struct BodyFrame {
+  Eigen::Vector3d origin = Eigen::Vector3d::Zero();  ///< the floor below the torso's centre [m]
+  double height = 1.72;                              ///< [m]
+};
+
+/// A body's frame (+Y up, facing +z): the origin below the centre of the bounding box of the body's
+/// vertices between 55 % and 70 % of its height (the torso, arms beside it; all its vertices where
+/// none lies there), on the level of its lowest point.
+BodyFrame body_frame(const mesh::TriangleMesh& body);
 
 struct SewOptions {
   std::string fabric = "gray-interlock";  ///< a built-in fabric (docs/cloth.md)
@@ -57,6 +70,16 @@ struct SewOptions {
   /// body; sewing from inside a body does not close and takes minutes).
   double max_inside_fraction = 0.01;
   double inside_depth = 0.01;
+  /// The body the pattern's panels are placed for. Where the body to sew on stands elsewhere (its
+  /// origin more than frame_tolerance away) or is of another height (by more than 2 %), the panels
+  /// are first moved together: by the difference of the origins, and up or down so that their
+  /// centroid's height over the floor scales with the bodies' heights (the pattern carried to this
+  /// body, its panels keeping their sizes and their places relative to each other).
+  BodyFrame pattern_body;
+  double frame_tolerance = 0.01;  ///< [m]
+  /// Panels so carried that come closer to the body than this [m] (a larger body) are moved out
+  /// along their normals, in steps of it, until every point of them is that far outside.
+  double clearance = 0.005;
 };
 
 struct SewResult {
@@ -75,6 +98,11 @@ struct SewResult {
   /// "closed", "time limit", "step limit", "wall-clock limit" or the simulator's failure
   std::string stopped;
   std::string method;     ///< "drawn" (at the closing speed) or "seam forces" (the fallback)
+  /// How far the panels were moved from where the pattern places them, to this body
+  /// (SewOptions::pattern_body) [m]; zero where the body stands where the pattern's does.
+  Eigen::Vector3d moved_by = Eigen::Vector3d::Zero();
+  /// Of those, the panels then moved out of the body (SewOptions::clearance).
+  int panels_moved_out = 0;
   Eigen::MatrixX3d sewn;  ///< #V×3 every cut vertex at the end (CutPattern's order) [m]
   /// The welded garment [m]: closed pairs joined into single vertices, faces turning as cut;
   /// labels: the panel of each vertex (label_names: the panel names).
