@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -22,22 +23,30 @@ namespace dresskit::pattern {
 namespace {
 
 // One sewing run from the placed panels: drawn at the closing speed, or pulled by seam forces (each
-// stitch's pairs together at most acceleration × the cloth's mass).
+// stitch's pairs together at most acceleration × the cloth's mass). Where `first` marks some
+// stitches, those are sewn first and the others from where that leaves the panels.
 SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const TriangleMesh& panels,
                    const std::shared_ptr<const MeshDistance>& body, const SewOptions& options,
-                   double acceleration) {
+                   double acceleration, const std::vector<char>& first) {
   SewResult r;
   ClothModel model = build_cloth(panels, fabric_by_name(options.fabric));
   const double k = default_stitch_stiffness(model.springs);
   const int nv = int(cut.placed.rows());
-  for (std::size_t s = 0, first = 0; s < pattern.stitches.size(); ++s, first = model.seams.size()) {
-    std::vector<std::array<int, 2>> pairs;
-    for (std::size_t p = first; p < cut.stitch_pairs.size() && cut.stitch_of_pair[p] == int(s); ++p)
-      pairs.push_back(cut.stitch_pairs[p]);
-    add_seam_pairs(model.seams, pairs, nv, {k, 0.0});
-    if (acceleration > 0.0 && !pairs.empty())
-      cap_stitches_by_acceleration(model.seams, int(first), model.mass, acceleration);
-  }
+  // The stitches for which `take` holds, in the pattern's order (their pairs are contiguous).
+  auto stitches = [&](const std::function<bool(std::size_t)>& take) {
+    SeamSet seams;
+    for (std::size_t s = 0, p = 0; s < pattern.stitches.size(); ++s) {
+      std::vector<std::array<int, 2>> pairs;
+      for (; p < cut.stitch_pairs.size() && cut.stitch_of_pair[p] == int(s); ++p)
+        pairs.push_back(cut.stitch_pairs[p]);
+      if (pairs.empty() || !take(s)) continue;
+      const int start = seams.size();
+      add_seam_pairs(seams, pairs, nv, {k, 0.0});
+      if (acceleration > 0.0) cap_stitches_by_acceleration(seams, start, model.mass, acceleration);
+    }
+    return seams;
+  };
+  model.seams = stitches([](std::size_t) { return true; });
   SimulationOptions o;
   o.gravity = options.gravity;
   o.air_damping = options.air_damping;
@@ -48,39 +57,58 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   if (body)
     o.colliders.push_back(
         Collider::mesh(body, acceleration > 0.0 ? options.fallback_friction : options.friction));
-  ClothSimulator sim(model, o);
   r.stitch_pairs = model.seams.size();
-  r.stopped = "time limit";
-  auto all_sewn = [&] {
-    return std::all_of(sim.sewn().begin(), sim.sewn().end(), [](char c) { return c != 0; });
-  };
-  // Sewing stops once the simulator holds every pair (each came within the tolerance).
+  // Sewing stops once the simulator holds every pair (each came within the tolerance), or at the
+  // limits, which both stages share.
   const auto start = std::chrono::steady_clock::now();
-  for (;;) {
-    const StepResult step = sim.step();
-    if (!step.ok) {
-      r.stopped = "failed: " + step.failure;
-      break;
+  double simulated = 0.0;
+  auto sew = [&](ClothSimulator& sim) {
+    for (;;) {
+      const StepResult step = sim.step();
+      if (!step.ok) {
+        r.stopped = "failed: " + step.failure;
+        return false;
+      }
+      ++r.steps;
+      if (std::all_of(sim.sewn().begin(), sim.sewn().end(), [](char c) { return c != 0; })) {
+        r.stopped = "closed";
+        return true;
+      }
+      if (simulated + sim.time() >= options.max_seconds) {
+        r.stopped = "time limit";
+        return false;
+      }
+      if (r.steps >= options.max_steps) {
+        r.stopped = "step limit";
+        return false;
+      }
+      if (options.max_wall_seconds > 0.0 &&
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
+              options.max_wall_seconds) {
+        r.stopped = "wall-clock limit";
+        return false;
+      }
     }
-    ++r.steps;
-    if (all_sewn()) {
-      r.stopped = "closed";
-      break;
-    }
-    if (sim.time() >= options.max_seconds) break;
-    if (r.steps >= options.max_steps) {
-      r.stopped = "step limit";
-      break;
-    }
-    if (options.max_wall_seconds > 0.0 &&
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-            options.max_wall_seconds) {
-      r.stopped = "wall-clock limit";
-      break;
-    }
+  };
+  ClothSimulator sim(model, o);
+  bool go_on = true;
+  if (std::find(first.begin(), first.end(), 1) != first.end()) {
+    ClothModel hanging = model;
+    hanging.seams = stitches([&](std::size_t s) { return first[s] != 0; });
+    ClothSimulator before(hanging, o);
+    go_on = sew(before);
+    simulated = before.time();
+    sim.set_state(before.positions(), before.velocities());
+  }
+  if (go_on) {
+    sew(sim);
+  } else {
+    const std::string stopped = r.stopped;
+    sim.step();  // sews every pair within the tolerance, so that the result counts and welds them
+    r.stopped = stopped;
   }
   r.sewn = sim.positions();
-  r.simulated_seconds = sim.time();
+  r.simulated_seconds = simulated + sim.time();
   r.stitch_gap.assign(pattern.stitches.size(), 0.0);
   SeamSet held;  // the pairs the simulator holds, all welded
   for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
@@ -213,11 +241,29 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
                        std::to_string(int(std::lround(1e3 * options.inside_depth))) +
                        " mm inside the body: it is placed for another body");
   }
-  SewResult r = sew_once(pattern, cut, panels, distance, options, 0.0);
+  // The stitches that hold the garment up, above the given share of the body's height, are sewn
+  // first where some lie below it.
+  std::vector<char> first(pattern.stitches.size(), 0);
+  if (body.V.rows() > 0 && options.first_above > 0.0) {
+    const BodyFrame here = body_frame(body);
+    const double above = here.origin.y() + options.first_above * here.height;
+    std::vector<double> height(first.size(), 0.0), points(first.size(), 0.0);
+    for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
+      const std::size_t s = std::size_t(cut.stitch_of_pair[p]);
+      height[s] += panels.V(cut.stitch_pairs[p][0], 1) + panels.V(cut.stitch_pairs[p][1], 1);
+      points[s] += 2.0;
+    }
+    for (std::size_t s = 0; s < first.size(); ++s)
+      first[s] = points[s] > 0.0 && height[s] / points[s] > above;
+    if (std::count(first.begin(), first.end(), 1) + std::count(points.begin(), points.end(), 0.0) ==
+        std::ptrdiff_t(first.size()))
+      first.assign(first.size(), 0);  // none below: all at once
+  }
+  SewResult r = sew_once(pattern, cut, panels, distance, options, 0.0, first);
   r.method = "drawn";
   if (!r.closed && options.fallback_acceleration > 0.0) {
     SewResult pulled =
-        sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration);
+        sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration, first);
     pulled.method = "seam forces";
     const int steps = r.steps + pulled.steps;
     // Kept where it closes, or comes closer without crossing itself more (seam forces can tangle

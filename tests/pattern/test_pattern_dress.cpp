@@ -1,6 +1,7 @@
-// The shared patterns sewn and dressed on gc_mean_all: stitches closed, nothing inside the body
-// (checked by winding numbers, independently of the simulator's distance field), no crossings (the
-// shirt: its measured few), the garment worn rather than hanging in the air, panel areas kept.
+// The shared patterns sewn and dressed on gc_mean_all and on other bodies: stitches closed, nothing
+// inside the body (checked by winding numbers, independently of the simulator's distance field), no
+// crossings (the shirt: its measured few), the garment worn rather than hanging in the air, panel
+// areas kept.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -130,15 +131,16 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
         << c.name << " " << d.pattern.panels[k];
 }
 
-// The shared hoody and shirt on their body, and carried to MakeHuman's young man and woman (in dm,
-// standing elsewhere, of other heights; on the woman, drawing leaves the shirt's pairs open and
-// seam forces close them). The shirt's sewn pairs end up to 1.8 mm apart where its side seams meet
-// its sleeves, and welding them leaves a few crossings there; the pencil dress does not sew closed
-// (docs/pattern.md, Limits).
+// The three shared patterns on their body (the pencil dress's bodice sewn first, then its skirt),
+// and the hoody and the shirt carried to MakeHuman's young man and woman (in dm, standing
+// elsewhere, of other heights; on the woman, drawing leaves the shirt's pairs open and seam forces
+// close them). The shirt's sewn pairs end up to 1.8 mm apart where its side seams meet its
+// sleeves, and welding them leaves a few crossings there (docs/pattern.md, Limits).
 INSTANTIATE_TEST_SUITE_P(
     Shared, PatternDress,
     ::testing::Values(SharedPattern{"hoody", "gc_hoody_mean_specification.json", 0.001, 0},
                       SharedPattern{"shirt", "gc_shirt_mean_specification.json", 0.002, 3},
+                      SharedPattern{"pencil_dress", "gc_dress_pencil_specification.json", 0.001, 0},
                       SharedPattern{"hoody_on_man", "gc_hoody_mean_specification.json", 0.001, 0,
                                     "mh_man_young_average", "dm", true},
                       SharedPattern{"shirt_on_woman", "gc_shirt_mean_specification.json", 0.002, 4,

@@ -22,10 +22,12 @@ mesh::TriangleMesh box_between_panels() {
   return box;
 }
 
-// The pattern is placed for that box: it is the pattern's body.
+// The pattern is placed for that box: it is the pattern's body. Its seams run along the box's
+// whole height: all sewn at once.
 SewOptions on_the_box() {
   SewOptions o;
   o.pattern_body = body_frame(box_between_panels());
+  o.first_above = 0.0;
   return o;
 }
 
@@ -101,10 +103,9 @@ TEST(PatternSew, BodyFrameOfABox) {
 TEST(PatternSew, AStepLimitLeavesPairsOpenAndUnwelded) {
   const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
   const CutPattern cut = cut_pattern(p, {0.04});
-  SewOptions o;
+  SewOptions o = on_the_box();
   o.max_steps = 2;
   o.fallback_acceleration = 0.0;
-  o.pattern_body = body_frame(box_between_panels());
   const SewResult r = sew_pattern(p, cut, box_between_panels(), o);
   EXPECT_FALSE(r.closed);
   EXPECT_EQ(r.stopped, "step limit");

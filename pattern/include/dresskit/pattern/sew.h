@@ -77,6 +77,11 @@ struct SewOptions {
   /// body, its panels keeping their sizes and their places relative to each other).
   BodyFrame pattern_body;
   double frame_tolerance = 0.01;  ///< [m]
+  /// Stitches whose points lie on average above this share of the body's height over its floor
+  /// (body_frame) are sewn first, the others once those are, where some lie below: a dress hangs
+  /// from its shoulders while its skirt is sewn (sewn at once, the skirt's seams closing around the
+  /// narrowing legs dragged the bodice down and its straps off the shoulders). 0: all at once.
+  double first_above = 0.5;
   /// Panels so carried that come closer to the body than this [m] (a larger body) are moved out
   /// along their normals, in steps of it, until every point of them is that far outside.
   double clearance = 0.005;
