@@ -490,6 +490,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       std::vector<ClothModel> models;
       for (std::size_t k = 0; k < result.garments.size(); ++k)
         models.push_back(garment_cloth(result.garments[k], fabrics[k]));
+      // A garment reaching above three quarters of the body's height hangs from its shoulders.
+      const double shoulders = result.body.V.col(1).minCoeff() + 0.75 * body_height;
       const std::vector<int> first = garment_offsets(models);
       const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
       RunOptions run_options;
@@ -502,7 +504,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         for (std::size_t k = 0; k < result.garments.size(); ++k) {
           DressedGarment& g = result.garments[k];
           x.middleRows(first[k], first[k + 1] - first[k]) = g.placed;
-          const std::vector<int> band = waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside);
+          const std::vector<int> band =
+              waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside, shoulders);
           g.waistband_vertices = static_cast<int>(band.size());
           for (int v : band) belt.push_back(first[k] + v);
         }

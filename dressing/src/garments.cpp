@@ -196,13 +196,14 @@ bool is_top(const DressedGarment& g) {
   return std::any_of(names.begin(), names.end(), names_sleeves) || std::none_of(names.begin(), names.end(), names_legs);
 }
 
-/// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts and no
-/// sleeves (trousers, a skirt; not a dress or a jumpsuit, which hang from the shoulders); its
-/// vertices within `band` of its top, where they lie outside the body and their edges are
-/// stretched by at most `max_strain` against `rest`. A waist placed tighter than that holds by
-/// itself, and held it would keep the strain limit from ever being met. Returns garment rows.
+/// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts, no
+/// sleeves and its top below `shoulders` (the height of the body's shoulders [m]: trousers, a skirt;
+/// not a dress or a jumpsuit, which hang from the shoulders, sleeved or not); its vertices within
+/// `band` of its top, where they lie outside the body and their edges are stretched by at most
+/// `max_strain` against `rest`. A waist placed tighter than that holds by itself, and held it would
+/// keep the strain limit from ever being met. Returns garment rows.
 std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
-                           const InsideTest& inside) {
+                           const InsideTest& inside, double shoulders) {
   if (!(band > 0.0)) return {};
   std::vector<char> loose(static_cast<std::size_t>(g.mesh.num_vertices()), 1);
   for (int f = 0; f < g.mesh.num_faces(); ++f)
@@ -232,7 +233,9 @@ std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest
   std::vector<int> belt;
   for (int v = 0; v < g.mesh.num_vertices(); ++v) {
     const int c = piece_of[static_cast<std::size_t>(v)];
-    if (c < 0 || !legs[static_cast<std::size_t>(c)] || sleeves[static_cast<std::size_t>(c)]) continue;
+    if (c < 0 || !legs[static_cast<std::size_t>(c)] || sleeves[static_cast<std::size_t>(c)] ||
+        top[static_cast<std::size_t>(c)] > shoulders)
+      continue;
     if (g.placed(v, 1) >= top[static_cast<std::size_t>(c)] - band && loose[static_cast<std::size_t>(v)] &&
         inside.signed_distance(g.placed.row(v).transpose()) > 0.0)
       belt.push_back(v);

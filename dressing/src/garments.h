@@ -40,6 +40,6 @@ bool is_top(const DressedGarment& g);
 
 /// The rows of the waistband of each bottom among a garment's pieces (garments.cpp).
 std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
-                           const mesh::InsideTest& inside);
+                           const mesh::InsideTest& inside, double shoulders);
 
 }  // namespace dresskit::dressing::detail

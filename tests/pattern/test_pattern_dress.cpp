@@ -118,6 +118,9 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
   } else {
     EXPECT_EQ(d.pattern.moved_by, Eigen::Vector3d::Zero()) << c.name;
   }
+  // Each hangs from the shoulders: none is held by a waistband while settling (the hoody and the
+  // sleeveless dress have skirt parts).
+  EXPECT_EQ(d.waistband_vertices, 0) << c.name;
   // Worn: nothing deeper than 2 mm in the body, ≥ 95 % of the garment within 8 cm of it.
   const Worn w = worn(r.body, d.dressed);
   EXPECT_EQ(w.deep_inside, 0) << c.name;
