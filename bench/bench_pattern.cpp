@@ -52,7 +52,8 @@ int main(int argc, char** argv) {
   const std::string body_path = data + "/bodies/gc_mean_all.obj";
   std::ofstream csv(argv[1]);
   csv << "pattern,edge_m,triangles,seconds_total,seconds_cut,seconds_sew,seconds_settle,sew_simulated_s,"
-         "max_gap_mm,sewn_crossings,inside_2mm,dressed_crossings,near_8cm_fraction,max_panel_area_change\n";
+         "max_gap_mm,unwelded_pairs,sewn_crossings,inside_2mm,dressed_crossings,near_8cm_fraction,"
+         "max_panel_area_change\n";
   std::cout << "CPU: " << bench::cpu_model() << "\n";
   for (const std::string& name : patterns) {
     GarmentFile g;
@@ -77,11 +78,11 @@ int main(int argc, char** argv) {
       area_change = std::max(area_change, std::abs(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k] - 1.0));
     csv << name << "," << edge << "," << d.pattern.triangles << "," << r.seconds << "," << d.pattern.cut_seconds << ","
         << d.pattern.sew_seconds << "," << settle << "," << d.pattern.sew_simulated << "," << 1e3 * d.pattern.max_gap
-        << "," << d.crossings_authored << "," << d.inside_dressed << "," << d.crossings_dressed << ","
+        << "," << d.pattern.unwelded.size() << "," << d.crossings_authored << "," << d.inside_dressed << "," << d.crossings_dressed << ","
         << double(near) / double(d.dressed.rows()) << "," << area_change << "\n";
     std::cout << name << ": " << r.seconds << " s (cut " << d.pattern.cut_seconds << ", sew " << d.pattern.sew_seconds
               << ", settle " << settle << "), " << d.pattern.triangles << " triangles, gap " << 1e3 * d.pattern.max_gap
-              << " mm, crossings sewn " << d.crossings_authored << " dressed " << d.crossings_dressed << ", inside "
+              << " mm, " << d.pattern.unwelded.size() << " pairs unwelded, crossings sewn " << d.crossings_authored << " dressed " << d.crossings_dressed << ", inside "
               << d.inside_dressed << ", near " << double(near) / double(d.dressed.rows()) << ", area change "
               << area_change << std::endl;
   }

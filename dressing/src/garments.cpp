@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/mesh/arap.h"
 #include "dresskit/mesh/errors.h"
@@ -65,7 +66,13 @@ TriangleMesh rest_shape(const DressedGarment& g) {
 cloth::ClothModel garment_cloth(const DressedGarment& g, const cloth::Fabric& fabric) {
   cloth::ClothModel model = cloth::build_cloth(rest_shape(g), fabric);
   const SewnPattern& p = g.pattern;
-  if (!g.from_pattern || p.flat_edges.empty()) return model;
+  if (!g.from_pattern) return model;
+  if (!p.unwelded.empty()) {  // sewn, not welded: held by seams pulling at most 40 m/s² × the mass
+    cloth::add_seam_pairs(model.seams, p.unwelded, static_cast<int>(model.rest_positions.rows()),
+                          {cloth::default_stitch_stiffness(model.springs), 0.0});
+    cloth::cap_stitches_by_acceleration(model.seams, 0, model.mass, 40.0);
+  }
+  if (p.flat_edges.empty()) return model;
   cloth::SpringSet& s = model.springs;
   for (int k = 0; k < s.size(); ++k) {
     if (s.type[k] != cloth::SpringType::structural) continue;

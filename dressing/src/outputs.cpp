@@ -105,6 +105,7 @@ json pattern_json(const SewnPattern& p) {
            {{"count", p.stitches},
             {"pairs", p.stitch_pairs},
             {"sewn_pairs", p.sewn_pairs},
+            {"unwelded_pairs", p.unwelded.size()},
             {"max_gap_m", p.max_gap},
             {"closed", p.closed},
             {"method", p.sew_method}}},

@@ -71,6 +71,7 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   s.sew_method = sewn.method;
   s.max_gap = sewn.max_gap;
   s.closed = sewn.closed;
+  s.unwelded = sewn.unwelded;
   s.moved_by = sewn.moved_by;
   s.panels_moved_out = sewn.panels_moved_out;
   s.triangles = static_cast<int>(sewn.garment.F.rows());

@@ -110,7 +110,7 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   r.sewn = sim.positions();
   r.simulated_seconds = simulated + sim.time();
   r.stitch_gap.assign(pattern.stitches.size(), 0.0);
-  SeamSet held;  // the pairs the simulator holds, all welded
+  std::vector<char> weld(cut.stitch_pairs.size(), 0);  // the pairs the simulator holds
   for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
     const double gap =
         (r.sewn.row(cut.stitch_pairs[p][0]) - r.sewn.row(cut.stitch_pairs[p][1])).norm();
@@ -118,17 +118,47 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
     widest = std::max(widest, gap);
     r.max_gap = std::max(r.max_gap, gap);
     r.mean_gap += gap / double(cut.stitch_pairs.size());
-    if (sim.sewn()[p]) {
-      ++r.closed_pairs;
-      add_seam_pairs(held, {cut.stitch_pairs[p]}, nv, {k, 0.0});
-    }
+    weld[p] = sim.sewn()[p];
+    r.closed_pairs += weld[p] != 0;
   }
   r.closed = r.closed_pairs == r.stitch_pairs;
-  // Weld: sewn pairs become single vertices; the panel labels follow their vertices.
+  // Weld: sewn pairs become single vertices; the panel labels follow their vertices. A held pair
+  // may lie up to a millimetre or two apart with a fold of cloth between its sides, where several
+  // panels meet (the cloth–cloth pass keeps the fold from the sides): welding it there makes the
+  // garment cross itself (the shirt's armpits, 6 times). The pairs of welded vertices in a crossing
+  // are left unwelded, a few rounds while that lowers the crossings, and kept in r.unwelded.
   Eigen::MatrixX3d V;
   Eigen::MatrixX3i F;
-  weld_seams(r.sewn, model.faces, held, std::numeric_limits<double>::infinity(), V, F,
-             r.welded_vertex);
+  auto weld_held = [&] {
+    SeamSet held;
+    for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p)
+      if (weld[p]) add_seam_pairs(held, {cut.stitch_pairs[p]}, nv, {k, 0.0});
+    weld_seams(r.sewn, model.faces, held, std::numeric_limits<double>::infinity(), V, F,
+               r.welded_vertex);
+  };
+  weld_held();
+  for (int crossings = count_intersections(V, F), round = 0; crossings > 0 && round < 4; ++round) {
+    const std::vector<int> crossing = crossing_vertices(V, F);
+    std::vector<char> before = weld;
+    for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p)
+      if (weld[p] && std::binary_search(crossing.begin(), crossing.end(),
+                                        r.welded_vertex[std::size_t(cut.stitch_pairs[p][0])]))
+        weld[p] = 0;
+    if (weld == before) break;
+    weld_held();
+    const int now = count_intersections(V, F);
+    if (now >= crossings) {  // no better: welded as before
+      weld = before;
+      weld_held();
+      break;
+    }
+    crossings = now;
+  }
+  for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
+    const int a = r.welded_vertex[std::size_t(cut.stitch_pairs[p][0])];
+    const int b = r.welded_vertex[std::size_t(cut.stitch_pairs[p][1])];
+    if (sim.sewn()[p] && !weld[p] && a != b) r.unwelded.push_back({a, b});  // (joined by others)
+  }
   r.garment.V = V;
   r.garment.F = F;
   r.garment.labels = Eigen::VectorXi::Constant(V.rows(), -1);

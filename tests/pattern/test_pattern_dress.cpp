@@ -85,6 +85,9 @@ struct SharedPattern {
   std::string body_units = "m";
   bool moved = false;            ///< carried from the pattern's body to this one before sewing
   std::string method = "drawn";  ///< how the seams closed
+  /// Share of the garment's vertices within 8 cm of the body at least (a garment made for a larger
+  /// body hangs looser).
+  double min_near = 0.95;
 };
 
 void PrintTo(const SharedPattern& p, std::ostream* os) { *os << p.name; }
@@ -121,12 +124,16 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
   // Each hangs from the shoulders: none is held by a waistband while settling (the hoody and the
   // sleeveless dress have skirt parts).
   EXPECT_EQ(d.waistband_vertices, 0) << c.name;
-  // Worn: nothing deeper than 2 mm in the body, ≥ 95 % of the garment within 8 cm of it.
+  // Worn: nothing deeper than 2 mm in the body, ≥ 95 % of the garment within 8 cm of it (the
+  // pencil dress on the smaller woman: 90 %, measured 91 %).
   const Worn w = worn(r.body, d.dressed);
   EXPECT_EQ(w.deep_inside, 0) << c.name;
-  EXPECT_GE(w.near_fraction, 0.95) << c.name;
+  EXPECT_GE(w.near_fraction, c.min_near) << c.name;
   // No triangle pair of the garment crosses another (the shirt: a few under its arms).
   EXPECT_LE(count_intersections(d.dressed, d.mesh.F), c.max_crossings) << c.name;
+  // Pairs left unwelded (a fold between their sides) are held together by seams while settling.
+  for (const auto& [a, b] : d.pattern.unwelded)
+    EXPECT_LT((d.dressed.row(a) - d.dressed.row(b)).norm(), 0.003) << c.name << " " << a << "-" << b;
   // Panel areas within 3 % of the flat pattern's.
   ASSERT_EQ(d.pattern.panel_area_dressed.size(), d.pattern.panels.size());
   for (std::size_t k = 0; k < d.pattern.panels.size(); ++k)
@@ -135,19 +142,21 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
 }
 
 // The three shared patterns on their body (the pencil dress's bodice sewn first, then its skirt),
-// and the hoody and the shirt carried to MakeHuman's young man and woman (in dm, standing
-// elsewhere, of other heights; on the woman, drawing leaves the shirt's pairs open and seam forces
-// close them). The shirt's sewn pairs end up to 1.8 mm apart where its side seams meet its
-// sleeves, and welding them leaves a few crossings there (docs/pattern.md, Limits).
+// and carried to MakeHuman's young man and woman (in dm, standing elsewhere, of other heights; on
+// the woman, drawing leaves the shirt's pairs open and seam forces close them). The shirt's sewn
+// pairs end up to 1.8 mm apart where its side seams meet its sleeves, with a fold of cloth between
+// some (left unwelded) (docs/pattern.md).
 INSTANTIATE_TEST_SUITE_P(
     Shared, PatternDress,
     ::testing::Values(SharedPattern{"hoody", "gc_hoody_mean_specification.json", 0.001, 0},
-                      SharedPattern{"shirt", "gc_shirt_mean_specification.json", 0.002, 3},
+                      SharedPattern{"shirt", "gc_shirt_mean_specification.json", 0.002, 0},
                       SharedPattern{"pencil_dress", "gc_dress_pencil_specification.json", 0.001, 0},
                       SharedPattern{"hoody_on_man", "gc_hoody_mean_specification.json", 0.001, 0,
                                     "mh_man_young_average", "dm", true},
-                      SharedPattern{"shirt_on_woman", "gc_shirt_mean_specification.json", 0.002, 4,
-                                    "mh_woman_young_average", "dm", true, "seam forces"}),
+                      SharedPattern{"shirt_on_woman", "gc_shirt_mean_specification.json", 0.002, 0,
+                                    "mh_woman_young_average", "dm", true, "seam forces"},
+                      SharedPattern{"pencil_dress_on_woman", "gc_dress_pencil_specification.json",
+                                    0.001, 0, "mh_woman_young_average", "dm", true, "drawn", 0.9}),
     [](const auto& info) { return info.param.name; });
 
 TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {

@@ -115,6 +115,9 @@ struct SewnPattern {
   /// simulator) may be left slightly apart by the collision passes after it.
   double max_gap = 0.0;
   bool closed = false;     ///< every pair sewn: came within DressOptions::seam_tolerance, then held
+  /// Sewn pairs left unwelded (pattern::SewResult::unwelded), garment vertex pairs: seams hold them
+  /// together while settling.
+  std::vector<std::array<int, 2>> unwelded;
   /// How far the panels were moved from the pattern's places to this body before sewing [m] (zero
   /// on the body the pattern is placed for; pattern::SewOptions::pattern_body), and how many were
   /// then moved out of it along their normals.

@@ -7,8 +7,10 @@
 //
 //   const Pattern p = read_pattern("shirt_specification.json");
 //   const SewResult r = sew_pattern(p, cut_pattern(p), body);
-//   // r.garment: one mesh [m], labels = panels; every pair welded when r.closed
+//   // r.garment: one mesh [m], labels = panels; every pair sewn when r.closed (and welded, but
+//   // for r.unwelded)
 #include <Eigen/Core>
+#include <array>
 #include <string>
 #include <vector>
 
@@ -109,10 +111,13 @@ struct SewResult {
   /// Of those, the panels then moved out of the body (SewOptions::clearance).
   int panels_moved_out = 0;
   Eigen::MatrixX3d sewn;  ///< #V×3 every cut vertex at the end (CutPattern's order) [m]
-  /// The welded garment [m]: closed pairs joined into single vertices, faces turning as cut;
+  /// The welded garment [m]: sewn pairs joined into single vertices, faces turning as cut;
   /// labels: the panel of each vertex (label_names: the panel names).
   mesh::TriangleMesh garment;
   std::vector<int> welded_vertex;  ///< #V of the cut: its vertex in garment
+  /// Sewn pairs left unwelded because welding them made the garment cross itself (a fold of cloth
+  /// between their sides), as garment vertex pairs: to be held together by seams while settling.
+  std::vector<std::array<int, 2>> unwelded;
 };
 
 /// Sews the cut pattern around the body (any mesh in metres; with body_collider false it may be
