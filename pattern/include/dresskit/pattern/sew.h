@@ -19,6 +19,14 @@
 
 namespace dresskit::pattern {
 
+/// How much slower this build runs than a release build: 10 where sanitizers instrument it
+/// (DRESSKIT_SANITIZE), else 1. Wall-clock bounds are scaled by it.
+#ifdef DRESSKIT_INSTRUMENTED
+inline constexpr double kBuildSlowdown = 10.0;
+#else
+inline constexpr double kBuildSlowdown = 1.0;
+#endif
+
 /// Where a body stands: GarmentCode places a pattern's panels around a body standing on y = 0 with
 /// its torso centred on x = z = 0, facing +z, 1.72 m tall (its mean body).
 struct BodyFrame {
@@ -49,8 +57,8 @@ struct SewOptions {
   int max_steps = 600;
   /// Wall-clock seconds at most for each try (0: no bound): where panels tangle, cloth–cloth
   /// collisions can take a second a step, and a pattern that does not sew is told in minutes
-  /// rather than tens of them.
-  double max_wall_seconds = 60.0;
+  /// rather than tens of them (60 s; × kBuildSlowdown in a sanitizer build).
+  double max_wall_seconds = 60.0 * kBuildSlowdown;
   /// The simulator's adaptive step (SimulationOptions::max_strain_change): while seams are drawn
   /// across the body, strain changes fast by design, and the default 0.05 shrank the step to
   /// 3e-5 s; at 1 the step stays near 1/120 s and strain limiting keeps the fabric within 10 %.
