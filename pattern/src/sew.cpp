@@ -244,8 +244,9 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   Eigen::RowVector3d moved = Eigen::RowVector3d::Zero();
   bool carried = false;
   int moved_out = 0;
+  const BodyFrame here = body.V.rows() > 0 ? body_frame(body) : BodyFrame{};
   if (body.V.rows() > 0) {
-    const BodyFrame here = body_frame(body), from = options.pattern_body;
+    const BodyFrame& from = options.pattern_body;
     if (!(from.height > 0.0))
       throw InputError("the pattern's body height " + std::to_string(from.height) +
                        " m is not positive");
@@ -275,7 +276,6 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   // first where some lie below it.
   std::vector<char> first(pattern.stitches.size(), 0);
   if (body.V.rows() > 0 && options.first_above > 0.0) {
-    const BodyFrame here = body_frame(body);
     const double above = here.origin.y() + options.first_above * here.height;
     std::vector<double> height(first.size(), 0.0), points(first.size(), 0.0);
     for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
