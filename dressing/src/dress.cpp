@@ -166,14 +166,15 @@ SimulationOptions simulation_options(DressQuality q, double& duration) {
   return o;
 }
 
-/// Largest structural strain of a cloth model at positions x (quad diagonals are shear springs).
-double max_structural_strain(const ClothModel& m, const Eigen::MatrixX3d& x) {
+/// Structural strains of a cloth model at positions x (quad diagonals are shear springs), sorted.
+std::vector<double> structural_strains(const ClothModel& m, const Eigen::MatrixX3d& x) {
   const SpringSet& s = m.springs;
-  double worst = 0.0;
+  std::vector<double> strain;
   for (int k = 0; k < s.size(); ++k)
     if (s.type[k] == SpringType::structural)
-      worst = std::max(worst, (x.row(s.i[k]) - x.row(s.j[k])).norm() / s.rest_length[k] - 1.0);
-  return worst;
+      strain.push_back((x.row(s.i[k]) - x.row(s.j[k])).norm() / s.rest_length[k] - 1.0);
+  std::sort(strain.begin(), strain.end());
+  return strain;
 }
 
 /// Where two layers overlap (the outer one's vertices within `overlap` of the inner one), the 5th
@@ -385,9 +386,6 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   // fit and outer pieces are pushed out of inner ones.
   const InsideTest inside(result.body);
   const auto body_distance = std::make_shared<const MeshDistance>(result.body);
-  // Per garment, its placement with the crossing regions rebuilt, before untangle_along_path: where
-  // settling from the untangled one stalls, it settles from this one.
-  std::vector<std::pair<Eigen::MatrixX3d, int>> rebuilt(result.garments.size());
   {
     Stage stage(result, options, "placement");
     std::string report, names;
@@ -449,7 +447,6 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       g.crossings_placed = g.crossings_fitted = count_intersections(g.placed, g.mesh.F);
       if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
         untangle(result.garments, k, *body_distance, options.placement.clearance);
-        rebuilt[k] = {g.placed, g.crossings_placed};
         untangle_along_path(result.garments, k);
         report += "; " + g.name + ": crossing itself " + std::to_string(g.crossings_fitted) + " times as fitted, " +
                   std::to_string(g.crossings_placed) + " untangled (" +
@@ -521,23 +518,14 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       };
       settle();
       // A garment untangled by holding its parts apart may be pressed between them and the body
-      // tighter than its length limits allow; where that stalls the settle, it settles again with
-      // steps near the body half as long (particles there move at most half a spring's
-      // length a step), from its placement with the crossing regions rebuilt where there is one
-      // (crossing itself more often, which settling does not undo, but free to settle).
-      bool rebuilt_any = false;  // a garment now starts from its rebuilt placement
+      // tighter than its length limits allow: the contacts then raise its strain at every step by
+      // more than the adaptive step allows, however short, and the settle stalls. It settles again
+      // from the same placement with four times the rise allowed a step.
       std::string held;
       if (result.settle.stalled) {
-        for (std::size_t k = 0; k < result.garments.size(); ++k) {
-          DressedGarment& g = result.garments[k];
-          if (rebuilt[k].first.rows() == 0 || rebuilt[k].first == g.placed) continue;
-          std::tie(g.placed, g.crossings_placed) = rebuilt[k];
-          rebuilt_any = true;
-        }
-        held += "; settling " + std::string(rebuilt_any ? "the untangled placement " : "") +
-                result.settle.stopped_reason + ", settled again with shorter steps near the body" +
-                (rebuilt_any ? " from the placement with the crossing regions rebuilt" : "");
-        o.contact_travel *= 0.5;
+        held += "; settling " + result.settle.stopped_reason + ", settled again allowing a rise in strain of " +
+                number(4.0 * o.max_strain_change) + " a step";
+        o.max_strain_change *= 4.0;
         settle();
       }
       result.settled = true;
@@ -545,7 +533,6 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       for (std::size_t k = 0; k < result.garments.size(); ++k) {
         DressedGarment& g = result.garments[k];
         g.dressed = sim->positions().middleRows(first[k], first[k + 1] - first[k]);
-        if (rebuilt_any) g.inside_placed = surface_fit(g.placed, inside).inside;
         if (g.waistband_vertices > 0)
           belts += "; waistband of " + g.name + " held (" + std::to_string(g.waistband_vertices) + " vertices)";
       }
@@ -560,7 +547,12 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     DressedGarment& g = result.garments[k];
     g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);
     g.inside_dressed = surface_fit(g.dressed, inside).inside;
-    g.max_strain_dressed = max_structural_strain(garment_cloth(g, fabrics[k]), g.dressed);
+    const std::vector<double> strain = structural_strains(garment_cloth(g, fabrics[k]), g.dressed);
+    if (!strain.empty()) {
+      g.max_strain_dressed = std::max(0.0, strain.back());
+      g.strain_p99_dressed = std::max(0.0, strain[strain.size() * 99 / 100]);
+      g.springs_over_limit = static_cast<int>(strain.end() - std::upper_bound(strain.begin(), strain.end(), kOverLimit));
+    }
     if (g.from_pattern && result.settled) measure_dressed_panels(g);
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];

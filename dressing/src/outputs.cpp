@@ -138,6 +138,8 @@ json report_json(const DressResult& r) {
                         {"dressed", g.crossings_dressed}}},
          {"vertices_inside_body_2mm", {{"placed", g.inside_placed}, {"dressed", g.inside_dressed}}},
          {"max_strain", g.max_strain_dressed},
+         {"strain_p99", g.strain_p99_dressed},
+         {"springs_over_limit", g.springs_over_limit},
          {"waistband_vertices", g.waistband_vertices},
          {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
     if (g.from_pattern) garments.back().update(pattern_json(g.pattern));

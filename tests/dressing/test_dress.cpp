@@ -7,6 +7,8 @@
 #include <filesystem>
 #include <map>
 
+#include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/dressing/dress.h"
@@ -84,7 +86,22 @@ TEST(Dress, CasualsuitOnTheChildWithoutLabelFiles) {
   EXPECT_GT(g.crossings_fitted, g.crossings_authored);
   EXPECT_LE(count_intersections(g.placed, g.mesh.F), g.crossings_authored);
   EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored);
+  // Over the strain limit only in a few springs (under the t-shirt's arms, which the placement
+  // stretched and the body holds), recounted here from the rest shape.
   EXPECT_LE(g.max_strain_dressed, 0.5);
+  EXPECT_LT(g.strain_p99_dressed, 0.13);
+  TriangleMesh rest = g.mesh;
+  rest.V *= g.placement.global_scale;
+  const ClothModel model = build_cloth(rest, fabric_by_name(g.fabric));
+  int over = 0, structural = 0;
+  for (int k = 0; k < model.springs.size(); ++k) {
+    if (model.springs.type[k] != SpringType::structural) continue;
+    ++structural;
+    over += (g.dressed.row(model.springs.i[k]) - g.dressed.row(model.springs.j[k])).norm() >
+            (1.0 + kOverLimit) * model.springs.rest_length[k];
+  }
+  EXPECT_EQ(g.springs_over_limit, over);
+  EXPECT_LT(over, structural / 50);
   EXPECT_TRUE(g.dressed.allFinite());
 }
 
@@ -157,8 +174,9 @@ TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
 
 // In stiff denim the same suit, too small for this body, cannot be held apart from itself between
 // the body's legs within its length limits: settling the untangled placement stalls, and the suit
-// settles from its placement with the crossing regions rebuilt, to the end of its time, nothing
-// inside the body and no more crossings than as authored.
+// settles again from that placement (no more crossings than as authored) allowing larger rises in
+// strain a step, to the end of its time, nothing inside the body and no more crossings than as
+// authored.
 TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   DRESSKIT_REQUIRE_DATA();
   const DressResult r = casualsuit_on_the_mean_body("11oz-black-denim");
@@ -167,7 +185,11 @@ TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   EXPECT_EQ(r.settle.stopped_reason, "duration reached");
   const auto settle = std::find_if(r.stages.begin(), r.stages.end(), [](const DressStage& s) { return s.name == "settle"; });
   ASSERT_NE(settle, r.stages.end());
-  EXPECT_NE(settle->reason.find("untangled placement stalled"), std::string::npos) << settle->reason;
+  EXPECT_NE(settle->reason.find("settling stalled"), std::string::npos) << settle->reason;
+  EXPECT_NE(settle->reason.find("settled again allowing a rise in strain of 0.2 a step"), std::string::npos)
+      << settle->reason;
+  EXPECT_LE(g.crossings_placed, g.crossings_authored);
+  EXPECT_EQ(count_intersections(g.placed, g.mesh.F), g.crossings_placed);
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
   EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored);
   // The settle step by step, of the attempt kept: one entry per step, in time order, to its end.

@@ -144,7 +144,7 @@ int DressCommand::run() {
     for (const DressedGarment& g : r.garments) {
       std::cout << g.name << ": " << (g.placed_by_placement ? "placed" : "already on the body") << ", "
                 << g.crossings_dressed << " crossings, " << g.inside_dressed << " vertices inside, largest strain "
-                << g.max_strain_dressed;
+                << g.max_strain_dressed << " (" << g.springs_over_limit << " springs over " << kOverLimit << ")";
       if (g.from_pattern)
         std::cout << ", sewn from " << g.pattern.panels.size() << " panels (" << g.pattern.stitches
                   << " seams, largest gap " << 1e3 * g.pattern.max_gap << " mm)";

@@ -129,6 +129,10 @@ struct SewnPattern {
   std::vector<std::string> warnings;            ///< stitched edges of unequal lengths
 };
 
+/// A structural spring strained beyond this counts as over the strain limit in the report: the
+/// simulator's 10 % and the length limits' tolerance.
+inline constexpr double kOverLimit = 0.11;
+
 struct DressedGarment {
   std::string name;    ///< the file's stem, or the name of a mesh given in memory; unique
   std::string fabric;
@@ -147,6 +151,8 @@ struct DressedGarment {
   int crossings_authored = 0, crossings_fitted = 0, crossings_placed = 0, crossings_dressed = 0;
   int inside_placed = 0, inside_dressed = 0;  ///< vertices deeper than 2 mm inside the body
   double max_strain_dressed = 0.0;    ///< largest structural strain against the rest shape
+  double strain_p99_dressed = 0.0;    ///< its 99th percentile over the structural springs
+  int springs_over_limit = 0;         ///< structural springs strained beyond kOverLimit
   int waistband_vertices = 0;         ///< vertices held as its waistband while settling
   bool from_pattern = false;          ///< sewn from a pattern file (then `pattern` says how)
   SewnPattern pattern;
