@@ -348,9 +348,11 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   const bool new_step = !(step_x0_.rows() == nv && step_x0_ == x0);
   if (new_step) {
     // Crossings at the start (a cloth that begins tangled, as a placed outfit can): their
-    // particles are left out of every pair below, so that the passes do not fight a crossing they
-    // cannot undo (a placed t-shirt with 12 of them stopped within 0.01 s). A step that starts where
-    // the last one ended, verified, starts without new ones: looked for again only while there are.
+    // particles are flagged, and a pair with a flagged particle on both its sides is left out
+    // below, so that the passes do not fight a crossing they cannot undo (a placed t-shirt with 12
+    // of them stopped within 0.01 s), while a tangled part still collides with the rest, so that a
+    // tangle does not spread through it. A step that starts where the last one ended, verified,
+    // starts without new ones: looked for again only while there are.
     const bool continued = verified_.rows() == nv && verified_ == x0;
     if (!continued || tangled_count_ > 0) find_tangles(x0);
     result.tangled_particles = tangled_count_;
@@ -395,13 +397,16 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
     for (Pair& p : pairs) p.d0 = closest(p, x0, w).norm();
   }
   if (new_step) find_close_pairs(x0, pairs);
-  auto tangled = [&](const int ids[4]) {
-    return tangled_count_ > 0 &&
-           (tangled_[ids[0]] || tangled_[ids[1]] || tangled_[ids[2]] || tangled_[ids[3]]);
+  auto tangled = [&](const int ids[4], int kind) {
+    if (tangled_count_ == 0) return false;
+    const int split = kind == 0 ? 1 : 2;  // vertex | triangle, or edge | edge
+    bool a = false, b = false;
+    for (int k = 0; k < 4; ++k) (k < split ? a : b) |= tangled_[ids[k]] != 0;
+    return a && b;
   };
   for (const Close& close : close_) {
     indices(close.pair, idx);
-    if (tangled(idx)) continue;
+    if (tangled(idx, close.pair.kind)) continue;
     signed_weights(close.pair.kind, close.w, alpha);
     ++result.proximity_pairs;
     Eigen::Vector3d n = close.normal;
@@ -425,7 +430,7 @@ SelfCollisionResult SelfCollision::resolve(const Eigen::MatrixX3d& x0, Eigen::Ma
   // change of P along the normal), or 0.
   auto contact_correction = [&](const Pair& pair, Contact& c) {
     indices(pair, idx);
-    if (tangled(idx)) {
+    if (tangled(idx, pair.kind)) {
       c = Contact();
       return 0.0;
     }

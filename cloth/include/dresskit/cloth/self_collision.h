@@ -40,8 +40,8 @@ struct SelfCollisionResult {
   int zones = 0;           ///< rigid impact zones at the end (0 when the passes sufficed)
   int zone_particles = 0;  ///< particles in them
   bool held = false;       ///< the last resort was used: every free particle stayed at x0
-  /// Particles of edge–triangle pairs that cross at x0, left out of every pair (the cloth started
-  /// tangled; a state without crossings never gains one).
+  /// Particles of edge–triangle pairs that cross at x0; a pair with one on each side is left out
+  /// (the cloth started tangled; a state without crossings never gains one).
   int tangled_particles = 0;
 };
 
