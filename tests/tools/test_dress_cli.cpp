@@ -75,4 +75,12 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("moon-silk"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+  // MakeHuman's elegantsuit fitted onto the child: its placement stretches springs by up to ~500 %,
+  // beyond the simulator's blow-up strain (settled, its first step blew up): refused, not settled.
+  r = run(dir, "dress " + data(kChild) + " " + data("garments/mh_female_elegantsuit01.obj") + " --units dm -o " +
+                   dir.file("d"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(error_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find("mh_female_elegantsuit01.obj: the placement stretches it by up to"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("d")));
 }
