@@ -414,7 +414,8 @@ StepResult ClothSimulator::try_step(double dt) {
   // before the cloth–cloth collisions, which on such a state find millions of candidate pairs
   // (minutes and gigabytes before the check below). Over blow_up_strain alone it is checked after
   // them, which can bring it back: a suit fitted onto another body, 180 % before them at its first
-  // step, 15 % after (refused there, its settle started at 1/30 the step and took 3.2× the steps).
+  // step, 15 % after (refused there, its settle would start at 1/30 the step and take 3.2× the
+  // steps).
   if (r.ok && self_ && x_.allFinite() && max_strain() > kExplodedFactor * options_.blow_up_strain) {
     r.ok = false;
     r.failure = blow_up_report(x_integrated, time_ + dt);

@@ -455,9 +455,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       g.inside_placed = surface_fit(g.placed, inside).inside;
       // A garment placed with springs stretched beyond the simulator's blow-up strain cannot be
       // settled (its first length-limit pass pulls particles through the body): refused.
+      if (!g.placed_by_placement) continue;
       const std::vector<double> strain = structural_strains(garment_cloth(g, fabrics[k]), g.placed);
       const double blow_up = SimulationOptions().blow_up_strain;
-      if (g.placed_by_placement && !strain.empty() && strain.back() > blow_up)
+      if (!strain.empty() && strain.back() > blow_up)
         throw InputError(g.file.path + ": the placement stretches it by up to " + number(100.0 * strain.back(), 3) +
                          " % (more than " + number(100.0 * blow_up, 3) + " %): the garment does not fit this body as placed");
     }
