@@ -75,16 +75,18 @@ MeshDistance::MeshDistance(const TriangleMesh& body, const MeshDistanceOptions& 
   const double pad = std::max(options.padding, band_ + 2.0 * h_);
   origin_ = box.min().array() - pad;
   const Eigen::Vector3d extent = box.sizes().array() + 2.0 * pad;
-  double points = 1.0;
+  double points = 1.0;  // stored: whole bricks
   for (int a = 0; a < 3; ++a) {
     size_[a] = static_cast<int>(std::ceil(extent[a] * inv_h_)) + 1;
-    points *= size_[a];
+    bricks_[a] = (size_[a] + 7) / 8;
+    points *= 8.0 * bricks_[a];
   }
   if (points > 2e8) {
     throw InputError("body collider: cell " + std::to_string(h_) + " m makes a grid of " +
                      std::to_string(points) + " points (at most 2e8): use a larger cell");
   }
   const std::size_t n = static_cast<std::size_t>(points);
+  const std::size_t lines = static_cast<std::size_t>(size_.cast<double>().prod());  // the ray-parity grid
   bvh_ = TriangleBvh(body.V, body.F);
 
   // Exact unsigned distances in the band around each triangle.
@@ -109,17 +111,19 @@ MeshDistance::MeshDistance(const TriangleMesh& body, const MeshDistanceOptions& 
   }
 
   // The sign: ray parity along each axis, majority of three.
-  std::vector<std::uint8_t> votes(n, 0), parity(n);
+  std::vector<std::uint8_t> votes(lines, 0), parity(lines);
   for (int a = 0; a < 3; ++a) {
     std::fill(parity.begin(), parity.end(), 0);
     flip_crossings(body, a, origin_, h_, size_, parity);
-    for (std::size_t p = 0; p < n; ++p) votes[p] += parity[p];
+    for (std::size_t p = 0; p < lines; ++p) votes[p] += parity[p];
   }
   int disagreements = 0;
-  for (std::size_t p = 0; p < n; ++p) {
-    if (votes[p] == 1 || votes[p] == 2) ++disagreements;
-    if (votes[p] >= 2) phi_[p] = -phi_[p];
-  }
+  for (int k = 0, p = 0; k < size_[2]; ++k)
+    for (int j = 0; j < size_[1]; ++j)
+      for (int i = 0; i < size_[0]; ++i, ++p) {
+        if (votes[p] == 1 || votes[p] == 2) ++disagreements;
+        if (votes[p] >= 2) phi_[index(i, j, k)] = -phi_[index(i, j, k)];
+      }
 
   const TopologyReport topology = analyse_topology(body);
   report_.boundary_edges = topology.num_boundary_edges;
@@ -181,10 +185,17 @@ double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward
     return band_ + (p - inside).norm();
   }
   const double fx = u[0] - i, fy = u[1] - j, fz = u[2] - k;
-  const std::size_t sx = 1, sy = static_cast<std::size_t>(size_[0]), sz = sy * size_[1];
-  const float* c = &phi_[index(i, j, k)];
-  const double c000 = c[0], c100 = c[sx], c010 = c[sy], c110 = c[sx + sy];
-  const double c001 = c[sz], c101 = c[sx + sz], c011 = c[sy + sz], c111 = c[sx + sy + sz];
+  double c000, c100, c010, c110, c001, c101, c011, c111;
+  if ((i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7) {  // all eight corners in one brick
+    const float* c = &phi_[index(i, j, k)];
+    c000 = c[0], c100 = c[1], c010 = c[8], c110 = c[9];
+    c001 = c[64], c101 = c[65], c011 = c[72], c111 = c[73];
+  } else {
+    c000 = phi_[index(i, j, k)], c100 = phi_[index(i + 1, j, k)];
+    c010 = phi_[index(i, j + 1, k)], c110 = phi_[index(i + 1, j + 1, k)];
+    c001 = phi_[index(i, j, k + 1)], c101 = phi_[index(i + 1, j, k + 1)];
+    c011 = phi_[index(i, j + 1, k + 1)], c111 = phi_[index(i + 1, j + 1, k + 1)];
+  }
   const double deep = -band_ * 0.999;
   const double lowest = std::min({c000, c100, c010, c110, c001, c101, c011, c111});
   if (lowest <= deep) return exact_distance(p, outward);

@@ -59,12 +59,19 @@ class MeshDistance {
   const mesh::TriangleMesh& mesh() const { return mesh_; }
 
  private:
-  int index(int i, int j, int k) const { return (k * size_[1] + j) * size_[0] + i; }
+  /// Where grid point (i, j, k) is stored: in bricks of 8 × 8 × 8 points, so that a lookup's eight
+  /// corners lie within one or two kilobytes instead of three rows and two planes of the grid apart
+  /// (each a cache and page miss on the tens-of-megabytes grid of a body).
+  int index(int i, int j, int k) const {
+    return ((((k >> 3) * bricks_[1] + (j >> 3)) * bricks_[0] + (i >> 3)) << 9) | ((k & 7) << 6) |
+           ((j & 7) << 3) | (i & 7);
+  }
 
   mesh::TriangleMesh mesh_;
   TriangleBvh bvh_;
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   Eigen::Vector3i size_ = Eigen::Vector3i::Zero();
+  Eigen::Vector3i bricks_ = Eigen::Vector3i::Zero();  ///< bricks of 8³ points per axis
   double h_ = 0.0, inv_h_ = 0.0, band_ = 0.0;
   std::vector<float> phi_;  ///< signed distance per grid point, clamped to ±band [m]
   MeshDistanceReport report_;
