@@ -451,7 +451,7 @@ StepResult ClothSimulator::try_step(double dt) {
     r.failure = "non-finite state (NaN or infinity)";
   }
   if (r.ok) {
-    const double strain = max_strain();
+    const double strain = r.strain = max_strain();
     if (strain > options_.blow_up_strain) {
       r.ok = false;
       r.failure = blow_up_report(x_integrated, time_ + dt);

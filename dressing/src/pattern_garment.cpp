@@ -19,6 +19,7 @@ bool is_pattern_garment(const GarmentFile& g) {
 }
 
 void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
+                         const std::shared_ptr<const cloth::MeshDistance>& body_distance,
                          const DressOptions& options, DressedGarment& d) {
   const pattern::Pattern p = pattern::read_pattern(g.file.path);
   pattern::CutOptions cut_options;
@@ -29,7 +30,7 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   sew_options.tolerance = options.seam_tolerance;
   const pattern::SewResult sewn = [&] {
     try {
-      return pattern::sew_pattern(p, cut, body, sew_options);
+      return pattern::sew_pattern(p, cut, body, sew_options, body_distance);
     } catch (const InputError& e) {
       throw InputError(g.file.path + ": " + e.what());
     }

@@ -235,7 +235,7 @@ BodyFrame body_frame(const TriangleMesh& body) {
 }
 
 SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const TriangleMesh& body,
-                      const SewOptions& options) {
+                      const SewOptions& options, std::shared_ptr<const MeshDistance> body_distance) {
   const auto t0 = std::chrono::steady_clock::now();
   // The panels as placed: each one is its flat shape turned and moved, so the springs' rest lengths
   // are the flat pattern's.
@@ -256,7 +256,7 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   }
   std::shared_ptr<const MeshDistance> distance;
   if (options.body_collider) {
-    distance = std::make_shared<const MeshDistance>(body);
+    distance = body_distance ? std::move(body_distance) : std::make_shared<const MeshDistance>(body);
     if (carried)
       moved_out =
           move_panels_out(panels, cut, int(pattern.panels.size()), *distance, options.clearance);

@@ -165,6 +165,7 @@ struct StepResult {
   int stitches_sewn = 0;     ///< stitches newly sewn (within the seam tolerance) in this step
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
   double integrator_strain = 0.0;  ///< largest structural strain right after the integrator [unitless]
+  double strain = 0.0;             ///< largest structural strain at the end of the step [unitless]
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
   /// Projective dynamics: the largest force left unbalanced on a free particle at the start of the
   /// solve's last iteration, over the heaviest particle's weight (−1: not measured, as with the

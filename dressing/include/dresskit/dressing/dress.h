@@ -129,6 +129,9 @@ struct SewnPattern {
   std::vector<std::string> warnings;            ///< stitched edges of unequal lengths
 };
 
+/// Samples of the settle's energy and strain over its duration (DressResult::settle_time).
+inline constexpr int kSettleSamples = 200;
+
 /// A structural spring strained beyond this counts as over the strain limit in the report: the
 /// simulator's 10 % and the length limits' tolerance.
 inline constexpr double kOverLimit = 0.11;
@@ -168,8 +171,9 @@ struct DressResult {
   std::vector<DressStage> stages;
   bool settled = false;   ///< the settle stage ran
   cloth::RunResult settle;       ///< when it ran
-  /// The settle step by step (the attempt kept): simulated time [s], elastic energy [J] and
-  /// largest structural strain [unitless] after each step.
+  /// The settle over time (the attempt kept), sampled after the first step, then after the first
+  /// step at least 1/kSettleSamples of the duration later, and after the last step: simulated time
+  /// [s], elastic energy [J] and largest structural strain [unitless].
   std::vector<double> settle_time, settle_energy, settle_strain;
   /// Edge–triangle crossings between different garments at the end (0 = the layers kept apart),
   /// and the gap between consecutive layers where they overlap: of the outer garment's vertices

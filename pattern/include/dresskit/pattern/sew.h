@@ -11,11 +11,16 @@
 //   // for r.unwelded)
 #include <Eigen/Core>
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "dresskit/mesh/triangle_mesh.h"
 #include "dresskit/pattern/cut.h"
+
+namespace dresskit::cloth {
+class MeshDistance;
+}
 
 namespace dresskit::pattern {
 
@@ -129,9 +134,11 @@ struct SewResult {
 };
 
 /// Sews the cut pattern around the body (any mesh in metres; with body_collider false it may be
-/// empty). Throws InputError for an unknown fabric, or panels placed inside the body
-/// (SewOptions::max_inside_fraction).
+/// empty). body_distance, when given, is the body's distance already built (it must be of this
+/// body); otherwise it is built here when body_collider asks for it. Throws InputError for an
+/// unknown fabric, or panels placed inside the body (SewOptions::max_inside_fraction).
 SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const mesh::TriangleMesh& body,
-                      const SewOptions& options = {});
+                      const SewOptions& options = {},
+                      std::shared_ptr<const cloth::MeshDistance> body_distance = nullptr);
 
 }  // namespace dresskit::pattern
