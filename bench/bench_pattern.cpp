@@ -1,10 +1,14 @@
 // Sewing patterns dressed on a body: for each shared GarmentCode pattern on gc_mean_all, the whole
 // dressing (what `dress-a-mesh dress BODY PATTERN.json` runs) and its parts — reading and cutting,
-// sewing (seam forces until every stitch pair is within 1 mm), settling — in wall-clock seconds, the
-// number of triangles, and the result: largest stitch gap, the sewn garment's own crossings, vertices
-// deeper than 2 mm inside the body, crossings once dressed, the share of vertices within 8 cm of the
-// body, and the largest change of a panel's area. One row per pattern; writes OUT.csv.
-//   bench_pattern OUT.csv [--edge 0.02] [--patterns a,b]
+// sewing (seam forces until every stitch pair is within 1 mm), settling — in wall-clock seconds,
+// the number of triangles, and the result: largest stitch gap, the sewn garment's own crossings,
+// vertices deeper than 2 mm inside the body, crossings once dressed, the share of vertices within 8
+// cm of the body, and the largest change of a panel's area. One row per pattern and trial; writes
+// OUT.csv. Sewing and settling are chaotic: a change of the input far below any tolerance (a
+// picometre) leads to another run, faster or slower, so a figure is a distribution. Trial 0 dresses
+// the body as read; trial t > 0 moves each body vertex by t picometres along one axis, times a sine
+// of its index.
+//   bench_pattern OUT.csv [--edge 0.02] [--patterns a,b] [--trials 1]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -30,15 +34,19 @@ using namespace dresskit;
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: bench_pattern OUT.csv [--edge 0.02] [--patterns gc_shirt_mean,...]\n";
+    std::cerr << "usage: bench_pattern OUT.csv [--edge 0.02] [--patterns gc_shirt_mean,...] "
+                 "[--trials 1]\n";
     return 64;
   }
   double edge = 0.02;
+  int trials = 1;
   std::vector<std::string> patterns = {"gc_shirt_mean", "gc_hoody_mean", "gc_dress_pencil"};
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--edge") {
       edge = std::stod(value);
+    } else if (key == "--trials") {
+      trials = std::stoi(value);
     } else if (key == "--patterns") {
       patterns.clear();
       std::stringstream s(value);
@@ -51,40 +59,51 @@ int main(int argc, char** argv) {
   const std::string data = testing::data_dir();
   const std::string body_path = data + "/bodies/gc_mean_all.obj";
   std::ofstream csv(argv[1]);
-  csv << "pattern,edge_m,triangles,seconds_total,seconds_cut,seconds_sew,seconds_settle,sew_simulated_s,"
-         "max_gap_mm,unwelded_pairs,sewn_crossings,inside_2mm,dressed_crossings,near_8cm_fraction,"
+  const TriangleMesh body_as_read = load_mesh(body_path);
+  csv << "pattern,trial,edge_m,triangles,seconds_total,seconds_cut,seconds_sew,seconds_settle,"
+         "sew_simulated_s,max_gap_mm,unwelded_pairs,sewn_crossings,inside_2mm,dressed_crossings,near_8cm_fraction,"
          "max_panel_area_change\n";
   std::cout << "CPU: " << bench::cpu_model() << "\n";
-  for (const std::string& name : patterns) {
-    GarmentFile g;
-    g.file = MeshFile::file(data + "/patterns/" + name + "_specification.json");
-    DressOptions o;
-    o.pattern_edge_length = edge;
-    const DressResult r = dress(MeshFile::file(body_path), {g}, o);
-    const DressedGarment& d = r.garments[0];
-    double settle = 0.0;
-    for (const DressStage& s : r.stages)
-      if (s.name == "settle") settle = s.seconds;
-    const TriangleBvh body(r.body.V, r.body.F);
-    int near = 0;
-    for (Eigen::Index i = 0; i < d.dressed.rows(); ++i) {
-      double d2 = 0.0;
-      Eigen::Vector3d q;
-      body.closest(d.dressed.row(i).transpose(), &q, &d2);
-      near += d2 <= 0.08 * 0.08;
+  for (const std::string& name : patterns)
+    for (int trial = 0; trial < trials; ++trial) {
+      TriangleMesh jittered = body_as_read;
+      for (Eigen::Index v = 0; v < jittered.V.rows(); ++v)
+        jittered.V(v, (v * 7) % 3) += trial * 1e-12 * std::sin(1.7 * static_cast<double>(v));
+      GarmentFile g;
+      g.file = MeshFile::file(data + "/patterns/" + name + "_specification.json");
+      DressOptions o;
+      o.pattern_edge_length = edge;
+      const DressResult r = dress(MeshFile::given(body_path, jittered), {g}, o);
+      const DressedGarment& d = r.garments[0];
+      double settle = 0.0;
+      for (const DressStage& s : r.stages)
+        if (s.name == "settle") settle = s.seconds;
+      const TriangleBvh body(r.body.V, r.body.F);
+      int near = 0;
+      for (Eigen::Index i = 0; i < d.dressed.rows(); ++i) {
+        double d2 = 0.0;
+        Eigen::Vector3d q;
+        body.closest(d.dressed.row(i).transpose(), &q, &d2);
+        near += d2 <= 0.08 * 0.08;
+      }
+      double area_change = 0.0;
+      for (std::size_t k = 0; k < d.pattern.panel_area_dressed.size(); ++k)
+        area_change = std::max(
+            area_change, std::abs(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k] - 1.0));
+      csv << name << "," << trial << "," << edge << "," << d.pattern.triangles << "," << r.seconds
+          << "," << d.pattern.cut_seconds << "," << d.pattern.sew_seconds << "," << settle << ","
+          << d.pattern.sew_simulated << "," << 1e3 * d.pattern.max_gap << ","
+          << d.pattern.unwelded.size() << "," << d.crossings_authored << "," << d.inside_dressed
+          << "," << d.crossings_dressed << "," << double(near) / double(d.dressed.rows()) << ","
+          << area_change << "\n";
+      std::cout << name << " (trial " << trial << "): " << r.seconds << " s (cut "
+                << d.pattern.cut_seconds << ", sew " << d.pattern.sew_seconds << ", settle "
+                << settle << "), " << d.pattern.triangles << " triangles, gap "
+                << 1e3 * d.pattern.max_gap << " mm, " << d.pattern.unwelded.size()
+                << " pairs unwelded, crossings sewn " << d.crossings_authored << " dressed "
+                << d.crossings_dressed << ", inside " << d.inside_dressed << ", near "
+                << double(near) / double(d.dressed.rows()) << ", area change " << area_change
+                << std::endl;
     }
-    double area_change = 0.0;
-    for (std::size_t k = 0; k < d.pattern.panel_area_dressed.size(); ++k)
-      area_change = std::max(area_change, std::abs(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k] - 1.0));
-    csv << name << "," << edge << "," << d.pattern.triangles << "," << r.seconds << "," << d.pattern.cut_seconds << ","
-        << d.pattern.sew_seconds << "," << settle << "," << d.pattern.sew_simulated << "," << 1e3 * d.pattern.max_gap
-        << "," << d.pattern.unwelded.size() << "," << d.crossings_authored << "," << d.inside_dressed << "," << d.crossings_dressed << ","
-        << double(near) / double(d.dressed.rows()) << "," << area_change << "\n";
-    std::cout << name << ": " << r.seconds << " s (cut " << d.pattern.cut_seconds << ", sew " << d.pattern.sew_seconds
-              << ", settle " << settle << "), " << d.pattern.triangles << " triangles, gap " << 1e3 * d.pattern.max_gap
-              << " mm, " << d.pattern.unwelded.size() << " pairs unwelded, crossings sewn " << d.crossings_authored << " dressed " << d.crossings_dressed << ", inside "
-              << d.inside_dressed << ", near " << double(near) / double(d.dressed.rows()) << ", area change "
-              << area_change << std::endl;
-  }
   return 0;
 }
