@@ -71,6 +71,17 @@ SelfCollision::SelfCollision(const Eigen::MatrixX3i& faces, int particles, std::
   for (int f = 0; f < faces_.rows(); ++f)
     for (int k = 0; k < 3; ++k)
       if (vertex_owner_[faces_(f, k)] < 0) vertex_owner_[faces_(f, k)] = f;
+  face_records_.resize(static_cast<std::size_t>(faces_.rows()));
+  for (int f = 0; f < faces_.rows(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      FaceRecord& r = face_records_[static_cast<std::size_t>(f)];
+      const int v = faces_(f, k), e = edges_.face_edges(f, k);
+      r.rep[k] = rep_[v];
+      r.vertex[k] = vertex_owner_[v] == f ? v : -1;
+      r.edge[k] = edges_.owner[e] == f ? e : -1;
+    }
+  edge_reps_.resize(edges_.i.size());
+  for (std::size_t e = 0; e < edges_.i.size(); ++e) edge_reps_[e] = {rep_[edges_.i[e]], rep_[edges_.j[e]]};
   vertex_faces_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   for (int f = 0; f < faces_.rows(); ++f)
     for (int k = 0; k < 3; ++k) ++vertex_faces_start_[faces_(f, k) + 1];
@@ -143,28 +154,30 @@ void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3
       if (lo(v, c) > b.max()[c] || hi(v, c) < b.min()[c]) return false;
     return true;
   };
-  auto one_way = [&](int ta, int tb) {
+  // The vertex of corner k of A, when A owns it, against face B (not a corner of B's).
+  auto vertex_pair = [&](const FaceRecord& A, int k, const FaceRecord& B, int tb) {
+    const int v = A.vertex[k], r = A.rep[k];
+    if (v >= 0 && r != B.rep[0] && r != B.rep[1] && r != B.rep[2] && vertex_meets(v, tb))
+      out.push_back({0, v, tb, 0.0});
+  };
+  bvh_.self_pairs([&](int ta, int tb) {
+    const FaceRecord &A = face_records_[static_cast<std::size_t>(ta)],
+                     &B = face_records_[static_cast<std::size_t>(tb)];
     for (int k = 0; k < 3; ++k) {
-      const int v = faces_(ta, k);
-      if (vertex_owner_[v] == ta && !vertex_in_face(v, tb) && vertex_meets(v, tb))
-        out.push_back({0, v, tb, 0.0});
-      const int e = edges_.face_edges(ta, k);
-      if (edges_.owner[e] != ta) continue;
+      vertex_pair(A, k, B, tb);
+      const int e = A.edge[k];
+      if (e < 0) continue;
+      const std::array<int, 2>& re = edge_reps_[static_cast<std::size_t>(e)];
       for (int m = 0; m < 3; ++m) {
-        const int e2 = edges_.face_edges(tb, m);
-        if (edges_.owner[e2] != tb || edges_touch(e, e2)) continue;
+        const int e2 = B.edge[m];
+        if (e2 < 0) continue;
+        const std::array<int, 2>& r2 = edge_reps_[static_cast<std::size_t>(e2)];
+        if (re[0] == r2[0] || re[0] == r2[1] || re[1] == r2[0] || re[1] == r2[1]) continue;
         if (edge_box[e].intersects(edge_box[e2])) out.push_back({1, e, e2, 0.0});
       }
     }
-  };
-  bvh_.self_pairs([&](int ta, int tb) {
-    one_way(ta, tb);
     // The edge–edge pairs came once above; the reverse adds only the other side's particles.
-    for (int k = 0; k < 3; ++k) {
-      const int v = faces_(tb, k);
-      if (vertex_owner_[v] == tb && !vertex_in_face(v, ta) && vertex_meets(v, ta))
-        out.push_back({0, v, ta, 0.0});
-    }
+    for (int k = 0; k < 3; ++k) vertex_pair(B, k, A, ta);
   });
   keep_reachable(x0, out, 0);
 }

@@ -108,6 +108,14 @@ class SelfCollision {
   EdgeList edges_;
   std::vector<int> rep_;
   std::vector<int> vertex_owner_;
+  /// Per face, what the whole candidate list reads of it, side by side (candidates() visits every
+  /// pair of neighbouring faces): its corners' representatives, and its k-th corner and k-th edge
+  /// where it owns them (−1 where not).
+  struct FaceRecord {
+    int rep[3], vertex[3], edge[3];
+  };
+  std::vector<FaceRecord> face_records_;
+  std::vector<std::array<int, 2>> edge_reps_;  ///< per edge: its ends' representatives
   std::vector<int> vertex_faces_start_, vertex_faces_;  ///< faces around each particle (CSR)
   std::vector<char> stale_;  ///< per particle: its path has left its listed box grown by h/2
   Eigen::MatrixX3d lb_lo_, lb_hi_;  ///< per particle: its listed box (its path's when listed)
