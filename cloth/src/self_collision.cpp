@@ -81,7 +81,8 @@ SelfCollision::SelfCollision(const Eigen::MatrixX3i& faces, int particles, std::
       r.edge[k] = edges_.owner[e] == f ? e : -1;
     }
   edge_reps_.resize(edges_.i.size());
-  for (std::size_t e = 0; e < edges_.i.size(); ++e) edge_reps_[e] = {rep_[edges_.i[e]], rep_[edges_.j[e]]};
+  for (std::size_t e = 0; e < edges_.i.size(); ++e)
+    edge_reps_[e] = {rep_[edges_.i[e]], rep_[edges_.j[e]]};
   vertex_faces_start_.assign(static_cast<std::size_t>(particles) + 1, 0);
   for (int f = 0; f < faces_.rows(); ++f)
     for (int k = 0; k < 3; ++k) ++vertex_faces_start_[faces_(f, k) + 1];
@@ -98,9 +99,9 @@ bool SelfCollision::vertex_in_face(int v, int f) const {
 }
 
 bool SelfCollision::edges_touch(int e1, int e2) const {
-  const int a = rep_[edges_.i[e1]], b = rep_[edges_.j[e1]], c = rep_[edges_.i[e2]],
-            d = rep_[edges_.j[e2]];
-  return a == c || a == d || b == c || b == d;
+  const std::array<int, 2>&a = edge_reps_[static_cast<std::size_t>(e1)],
+                         &b = edge_reps_[static_cast<std::size_t>(e2)];
+  return a[0] == b[0] || a[0] == b[1] || a[1] == b[0] || a[1] == b[1];
 }
 
 void SelfCollision::indices(const Pair& p, int idx[4]) const {
@@ -167,12 +168,9 @@ void SelfCollision::candidates(const Eigen::MatrixX3d& x0, const Eigen::MatrixX3
       vertex_pair(A, k, B, tb);
       const int e = A.edge[k];
       if (e < 0) continue;
-      const std::array<int, 2>& re = edge_reps_[static_cast<std::size_t>(e)];
       for (int m = 0; m < 3; ++m) {
         const int e2 = B.edge[m];
-        if (e2 < 0) continue;
-        const std::array<int, 2>& r2 = edge_reps_[static_cast<std::size_t>(e2)];
-        if (re[0] == r2[0] || re[0] == r2[1] || re[1] == r2[0] || re[1] == r2[1]) continue;
+        if (e2 < 0 || edges_touch(e, e2)) continue;
         if (edge_box[e].intersects(edge_box[e2])) out.push_back({1, e, e2, 0.0});
       }
     }
