@@ -22,6 +22,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/thickness/thickness.h"
 #include "garments.h"
+#include "padding.h"
 #include "pattern_garment.h"
 
 using namespace dresskit::alignment;
@@ -250,6 +251,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         if (other.name == d.name)
           throw InputError(g.file.path + ": another garment is called " + d.name + "; outputs are named by it");
       d.fabric = g.fabric.empty() ? "gray-interlock" : g.fabric;
+      d.padded = g.padded;
       if (is_pattern_garment(g)) {  // a sewing pattern: cut, sewn, welded
         if (!body_distance) body_distance = std::make_shared<const MeshDistance>(result.body);
         sew_pattern_garment(g, result.body, body_distance, options, d);
@@ -482,21 +484,30 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       separation = std::max(separation, g.thickness);
       report += (report.empty() ? "" : ", ") + g.name + " " + number(1e3 * g.thickness, 2) + " mm";
     }
-    report += " (mass per area over fibre density × solidity 0.25), each garment settled as one sheet";
+    report += " (mass per area over fibre density × solidity 0.25)";
+    for (std::size_t k = 0; k < result.garments.size(); ++k) {
+      DressedGarment& g = result.garments[k];
+      if (!g.padded) continue;
+      const ThicknessResult t = compute_thickness(fabrics[k].composition, options.padding);
+      g.padding.thickness = t.thickness, g.padding.min = t.thickness_min, g.padding.max = t.thickness_max;
+      report += "; " + g.name + " padded " + number(1e3 * t.thickness) + " mm (limits " + number(1e3 * t.thickness_min) +
+                "–" + number(1e3 * t.thickness_max) + " mm) by heat conduction";
+    }
     stage.done(true, report);
   }
 
   // Settle.
   for (DressedGarment& g : result.garments) g.dressed = g.placed;
+  double duration = 1.0;
+  SimulationOptions o = simulation_options(options.quality, duration);
+  if (options.settle_seconds > 0.0) duration = options.settle_seconds;
+  o.colliders.push_back(Collider::mesh(body_distance));
+  std::vector<std::vector<int>> bands;  // trousers and skirts stay up by their waistband, held as by a belt
   {
     Stage stage(result, options, "settle");
     if (!options.settle) {
       stage.done(false, "not asked for");
     } else {
-      double duration = 1.0;
-      SimulationOptions o = simulation_options(options.quality, duration);
-      if (options.settle_seconds > 0.0) duration = options.settle_seconds;
-      o.colliders.push_back(Collider::mesh(body_distance));
       std::vector<ClothModel> models;
       for (std::size_t k = 0; k < result.garments.size(); ++k)
         models.push_back(garment_cloth(result.garments[k], fabrics[k]));
@@ -504,20 +515,20 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       const double shoulders = result.body.V.col(1).minCoeff() + 0.75 * body_height;
       const std::vector<int> first = garment_offsets(models);
       const ClothModel model = models.size() == 1 ? models[0] : stack_layers(models, separation);
+      for (DressedGarment& g : result.garments) {
+        bands.push_back(waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside, shoulders));
+        g.waistband_vertices = static_cast<int>(bands.back().size());
+      }
       RunOptions run_options;
       run_options.duration = duration;
       std::optional<ClothSimulator> sim;
       auto settle = [&] {
         sim.emplace(model, o);
         Eigen::MatrixX3d x(model.rest_positions.rows(), 3);
-        std::vector<int> belt;  // trousers and skirts stay up by their waistband, held as by a belt
+        std::vector<int> belt;
         for (std::size_t k = 0; k < result.garments.size(); ++k) {
-          DressedGarment& g = result.garments[k];
-          x.middleRows(first[k], first[k + 1] - first[k]) = g.placed;
-          const std::vector<int> band =
-              waistband(g, rest_shape(g).V, options.waistband, o.strain_limit, inside, shoulders);
-          g.waistband_vertices = static_cast<int>(band.size());
-          for (int v : band) belt.push_back(first[k] + v);
+          x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
+          for (int v : bands[k]) belt.push_back(first[k] + v);
         }
         sim->set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
         if (!belt.empty()) sim->set_pinned(belt);
@@ -565,6 +576,30 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     }
   }
 
+  // Padding: padded garments become double layers over the settled outfit.
+  {
+    Stage stage(result, options, "padding");
+    const bool any = std::any_of(result.garments.begin(), result.garments.end(), [](const DressedGarment& g) { return g.padded; });
+    if (!any) {
+      stage.done(false, "no padded garment");
+    } else if (!result.settled || !result.settle.ok) {
+      stage.done(false, "padding grows over the settled garments: not settled");
+    } else {
+      const PaddingRun p = pad_garments(result.garments, fabrics, *body_distance, o, separation, duration, bands, options.on_settle);
+      result.padding_ran = true;
+      result.padding_settle = p.run;
+      std::string report;
+      for (const DressedGarment& g : result.garments)
+        if (g.padded)
+          report += (report.empty() ? "" : "; ") + g.name + " " + number(1e3 * g.padding.thickness) + " mm asked, shells " +
+                    number(1e3 * g.padding.gap_min) + "–" + number(1e3 * g.padding.gap_max) + " mm apart (median " +
+                    number(1e3 * g.padding.gap_median) + "), " + std::to_string(g.padding.start_at_full) + " of " +
+                    std::to_string(g.dressed.rows()) + " vertices started at the full thickness";
+      stage.done(true, report + "; " + std::to_string(p.run.totals.steps) + " steps, " + number(p.simulated) +
+                           " s simulated, " + p.run.stopped_reason);
+    }
+  }
+
   result.layer_crossings = crossings_between(result.garments, &DressedGarment::dressed);
   for (std::size_t k = 0; k < result.garments.size(); ++k) {
     DressedGarment& g = result.garments[k];
@@ -579,7 +614,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     if (g.from_pattern && result.settled) measure_dressed_panels(g);
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];
-    const Gap gap = layer_gap(g.dressed, inner.dressed, inner.mesh.F, 0.02);
+    const Gap gap = layer_gap(g.dressed, inner.padded && inner.dressed_outer.rows() > 0 ? inner.dressed_outer : inner.dressed,
+                              inner.mesh.F, 0.02);
     result.layer_gap_p5.push_back(gap.p5);
     result.layer_gap_median.push_back(gap.median);
     result.layer_gap_vertices.push_back(gap.vertices);

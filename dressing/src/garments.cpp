@@ -96,6 +96,11 @@ int crossings_between(const std::vector<DressedGarment>& garments, Eigen::Matrix
     TriangleMesh m;
     m.V = g.*at;
     m.F = g.mesh.F;
+    if (at == &DressedGarment::dressed && g.dressed_outer.rows() > 0) {  // a padded garment: both shells
+      TriangleMesh outer = m;
+      outer.V = g.dressed_outer;
+      append_mesh(m, outer, "");
+    }
     own += count_intersections(m.V, m.F);
     append_mesh(all, m, "");
   }

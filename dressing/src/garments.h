@@ -28,7 +28,8 @@ void untangle(std::vector<DressedGarment>& garments, std::size_t k, const cloth:
 /// (garments.cpp); updates its placed positions and crossings_placed.
 void untangle_along_path(std::vector<DressedGarment>& garments, std::size_t k);
 
-/// Edge–triangle crossings between different garments at their positions `at` (placed or dressed).
+/// Edge–triangle crossings between different garments at their positions `at` (placed or dressed;
+/// dressed: a padded garment's two shells).
 int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at);
 
 /// Part names of a garment's legs (trouser legs, skirt parts) and of its sleeves.

@@ -120,6 +120,18 @@ json pattern_json(const SewnPattern& p) {
             {"warnings", p.warnings}}}};
 }
 
+/// A padded garment: its thickness asked and the shells' distance dressed.
+json padding_json(const DressedGarment& g) {
+  const PaddingFigures& p = g.padding;
+  json out = {{"thickness_mm", 1e3 * p.thickness}, {"min_mm", 1e3 * p.min}, {"max_mm", 1e3 * p.max},
+              {"by", "heat conduction"}, {"start_at_full_thickness", p.start_at_full},
+              {"crossings", {{"start", p.crossings_start}, {"dressed", p.crossings}}}};
+  if (g.dressed_outer.rows() > 0)
+    out["gap_mm"] = {{"min", 1e3 * p.gap_min}, {"p5", 1e3 * p.gap_p5}, {"median", 1e3 * p.gap_median},
+                     {"max", 1e3 * p.gap_max}, {"vertices_below_min", p.below_min}};
+  return out;
+}
+
 json report_json(const DressResult& r) {
   json garments = json::array();
   for (const DressedGarment& g : r.garments) {
@@ -143,6 +155,8 @@ json report_json(const DressResult& r) {
          {"waistband_vertices", g.waistband_vertices},
          {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
     if (g.from_pattern) garments.back().update(pattern_json(g.pattern));
+    if (g.padded) garments.back()["padding"] = padding_json(g);
+    if (g.dressed_outer.rows() > 0) garments.back()["outputs"]["dressed_outer"] = g.name + ".outer.obj";
   }
   json gaps = json::array();
   for (std::size_t k = 0; k < r.layer_gap_median.size(); ++k)
@@ -170,6 +184,11 @@ json report_json(const DressResult& r) {
                         {"stuck_steps", r.settle.totals.stuck_steps},
                         {"warnings", r.settle.warnings}};
   }
+  if (r.padding_ran)
+    report["padding"] = {{"stopped_reason", r.padding_settle.stopped_reason},
+                         {"stalled", r.padding_settle.stalled},
+                         {"steps", r.padding_settle.totals.steps},
+                         {"at_rest_from_seconds", r.padding_settle.rest_at >= 0.0 ? json(r.padding_settle.rest_at) : json(nullptr)}};
   return report;
 }
 
@@ -200,6 +219,7 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
   for (const DressedGarment& g : r.garments) {
     save_mesh(in_file_order(g, g.placed), (dir / (g.name + ".placed.obj")).string());
     save_mesh(in_file_order(g, g.dressed), (dir / (g.name + ".dressed.obj")).string());
+    if (g.dressed_outer.rows() > 0) save_mesh(in_file_order(g, g.dressed_outer), (dir / (g.name + ".outer.obj")).string());
   }
   std::vector<NamedMesh> scene;
   scene.push_back({"body", r.body});
@@ -207,6 +227,9 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
     TriangleMesh dressed = g.mesh;
     dressed.V = g.dressed;
     scene.push_back({g.name, dressed});
+    if (g.dressed_outer.rows() == 0) continue;
+    dressed.V = g.dressed_outer;
+    scene.push_back({g.name + ".outer", dressed});
   }
   save_scene(scene, (dir / "dressed.glb").string());
   if (options.segments) {
@@ -220,9 +243,10 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
   ReportPage page;
   if (options.page) page = detail::dress_page(r, options.command, "");
   json stages = stages_json(r);
+  const auto padded = std::count_if(r.garments.begin(), r.garments.end(), [](const DressedGarment& g) { return g.dressed_outer.rows() > 0; });
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   stages.push_back({{"name", "write"}, {"ran", true}, {"seconds", seconds},
-                    {"reason", std::to_string(2 * r.garments.size() + 1 + options.segments) + " files and the report" +
+                    {"reason", std::to_string(2 * r.garments.size() + padded + 1 + options.segments) + " files and the report" +
                                    (options.page ? " and its page" : "")}});
   report["stages"] = stages;
   report["seconds"] = r.seconds + seconds;

@@ -2,6 +2,7 @@
 // refit of a MakeHuman outfit, units across files, layers of two garment files, stages left out when
 // a scene does not need them, and bad input.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/dressing/dress.h"
+#include "dresskit/dressing/outputs.h"
 #include "dresskit/mannequin/garments.h"
 #include "dresskit/mannequin/mannequin.h"
 #include "dresskit/mesh/errors.h"
@@ -19,6 +21,7 @@
 #include "dresskit/mesh/io.h"
 #include "dresskit/mesh/topology.h"
 #include "dresskit/testing/errors.h"
+#include "dresskit/thickness/thickness.h"
 #include "test_data.h"
 
 using namespace dresskit;
@@ -103,6 +106,67 @@ TEST(Dress, CasualsuitOnTheChildWithoutLabelFiles) {
   EXPECT_EQ(g.springs_over_limit, over);
   EXPECT_LT(over, structural / 50);
   EXPECT_TRUE(g.dressed.allFinite());
+}
+
+// Padded, the child's casualsuit is a double layer: its inner shell where the sheet settled, its outer
+// shell out by the thickness heat conduction gives for its fabric (recomputed here), except where
+// the t-shirt lies over the jeans and holds their padding down. Independent checks: the shells'
+// distances and their crossings recounted from the positions, CGAL's inside test, and the outer
+// shell's distance from the body against the inner one's.
+TEST(Dress, PaddedGarmentIsADoubleLayerAsThickAsHeatConductionGives) {
+  DRESSKIT_REQUIRE_DATA();
+  CasualsuitOnTheChild c;
+  c.garment.padded = true;
+  const DressResult r = dress(c.body, {c.garment});
+  const DressedGarment& g = r.garments[0];
+  ASSERT_TRUE(r.padding_ran);
+  ASSERT_TRUE(r.padding_settle.ok) << r.padding_settle.failure;
+  EXPECT_TRUE(stage(r, "padding").ran);
+  const thickness::ThicknessResult heat = thickness::compute_thickness(fabric_by_name("gray-interlock").composition);
+  EXPECT_DOUBLE_EQ(g.padding.thickness, heat.thickness);
+  EXPECT_DOUBLE_EQ(g.padding.min, heat.thickness_min);
+  EXPECT_DOUBLE_EQ(g.padding.max, heat.thickness_max);
+  EXPECT_GT(g.padding.thickness, 0.005);
+  ASSERT_EQ(g.dressed_outer.rows(), g.dressed.rows());
+  const Eigen::VectorXd gap = (g.dressed_outer - g.dressed).rowwise().norm();
+  std::vector<double> sorted(gap.data(), gap.data() + gap.size());
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[sorted.size() / 2];
+  EXPECT_NEAR(median, g.padding.thickness, 0.1 * g.padding.thickness);
+  EXPECT_NEAR(g.padding.gap_median, median, 1e-9);
+  EXPECT_LE(sorted.back(), g.padding.max * 1.01);
+  const auto below = std::count_if(sorted.begin(), sorted.end(), [&](double d) { return d < 0.95 * g.padding.min; });
+  EXPECT_LT(below, static_cast<long>(sorted.size() / 4));
+  // Neither shell crosses itself, the other or the body.
+  TriangleMesh both = g.mesh;
+  both.V.resize(2 * g.mesh.num_vertices(), 3);
+  both.V << g.dressed, g.dressed_outer;
+  both.F.resize(2 * g.mesh.num_faces(), 3);
+  both.F << g.mesh.F, g.mesh.F.array() + g.mesh.num_vertices();
+  EXPECT_EQ(count_intersections(both.V, both.F), 0);
+  EXPECT_EQ(g.padding.crossings, 0);
+  const InsideTest inside(r.body);
+  EXPECT_EQ(inside.count_deeper(g.dressed, 0.002) + inside.count_deeper(g.dressed_outer, 0.002), 0);
+  // Where the shells lie apart, the outer one lies farther from the body.
+  int apart = 0, outside = 0;
+  for (Eigen::Index v = 0; v < gap.size(); ++v) {
+    if (gap(v) < g.padding.min) continue;
+    ++apart;
+    outside += inside.signed_distance(g.dressed_outer.row(v).transpose()) > inside.signed_distance(g.dressed.row(v).transpose());
+  }
+  EXPECT_GT(apart, gap.size() / 2);
+  EXPECT_GE(outside, 0.98 * apart);
+  // Written: the outer shell in the file's own vertex order and units, and the padding reported.
+  const test::TempDir dir;
+  const nlohmann::json report = nlohmann::json::parse(write_dress_outputs(dir.path().string(), r, {}));
+  const nlohmann::json& padding = report["garments"][0]["padding"];
+  EXPECT_NEAR(padding["thickness_mm"].get<double>(), 1e3 * g.padding.thickness, 1e-9);
+  EXPECT_EQ(padding["crossings"]["dressed"].get<int>(), 0);
+  LoadOptions dm;
+  dm.units = Units::parse("dm");
+  const TriangleMesh outer = load_mesh(dir.file(g.name + ".outer.obj"), dm);
+  ASSERT_EQ(outer.num_vertices(), c.reference.num_vertices());
+  EXPECT_LT((outer.V - g.dressed_outer).cwiseAbs().maxCoeff(), 1e-5);
 }
 
 // A man's suit on a woman: the part-wise fit bends sleeves and legs into the body of the suit, 128
@@ -320,6 +384,8 @@ TEST(Dress, StagesLeftOutWhenTheSceneDoesNotNeedThem) {
   EXPECT_FALSE(stage(r, "placement").ran);
   EXPECT_NE(stage(r, "placement").reason.find("already on the body"), std::string::npos);
   EXPECT_FALSE(stage(r, "settle").ran);
+  EXPECT_FALSE(stage(r, "padding").ran);
+  EXPECT_EQ(stage(r, "padding").reason, "no padded garment");
   EXPECT_FALSE(r.garments[0].placed_by_placement);
   EXPECT_EQ((r.garments[0].placed - r.garments[0].mesh.V).cwiseAbs().maxCoeff(), 0.0);
   ASSERT_EQ(r.body_parts.size(), 6u);

@@ -38,7 +38,7 @@ TEST(DressCli, WritesTheDressedOutfitAndAReportOfEveryStage) {
     EXPECT_GE(s["seconds"].get<double>(), 0.0);
   }
   EXPECT_EQ(names, (std::vector<std::string>{"load", "clean", "units", "segmentation", "layers", "placement",
-                                             "thickness", "settle", "write"}));
+                                             "thickness", "settle", "padding", "write"}));
   const auto& g = report["garments"][0];
   EXPECT_EQ(g["vertices_inside_body_2mm"]["dressed"], 0);
   EXPECT_LE(g["crossings"]["dressed"].get<int>(), g["crossings"]["authored"].get<int>());
@@ -71,6 +71,10 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--layers"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("b")));
+  r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --padding thick -o " + dir.file("p"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--padding: 'thick'"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("p")));
   r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --fabric moon-silk -o " + dir.file("c"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("moon-silk"), std::string::npos) << r.err;

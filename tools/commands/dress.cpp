@@ -31,6 +31,9 @@ void DressCommand::add_to(CLI::App& app) {
   option_with_default(command, "--up", up, "up axis of every input: +x, -x, +y, -y, +z, -z");
   command->add_option("--fabric", fabrics,
                       "fabric of each garment in order (one: all of them); default gray-interlock");
+  command->add_option("--padding", paddings,
+                      "padding of each garment in order (one: all of them): none, or heat (a double layer "
+                      "as thick as heat conduction gives for its fabric, docs/dressing.md); default none");
   command->add_option("--body-labels", body_labels, "part labels of the body (labels JSON): no segmentation");
   command->add_option("--garment-labels", garment_labels,
                       "part labels of each garment in order (one file: all of them, keyed by file stem)");
@@ -103,6 +106,10 @@ int DressCommand::run() {
     g.file = MeshFile::file(garments[i], load_options(garment_units, units, up),
                             per_garment(garment_labels, i, "--garment-labels", garments.size()));
     g.fabric = per_garment(fabrics, i, "--fabric", garments.size());
+    const std::string padding = per_garment(paddings, i, "--padding", garments.size());
+    if (padding != "" && padding != "none" && padding != "heat")
+      throw InputError("--padding: '" + padding + "' is not none or heat");
+    g.padded = padding == "heat";
     if (!stems.insert(fs::path(garments[i]).stem().string()).second)
       throw InputError(garments[i] + ": another garment has the same file name; outputs are named by it");
     garment_files.push_back(g);
@@ -124,12 +131,16 @@ int DressCommand::run() {
   inputs.push_back(body);
   inputs.push_back(body_labels);
   inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
-  if (r.settled && !r.settle.ok) {
-    std::cerr << "dress-a-mesh: " << body << ": settling stopped: " << r.settle.failure << " ("
+  if ((r.settled && !r.settle.ok) || (r.padding_ran && !r.padding_settle.ok && !r.padding_settle.stalled)) {
+    const std::string failure = !r.settle.ok ? r.settle.failure : "padding: " + r.padding_settle.failure;
+    std::cerr << "dress-a-mesh: " << body << ": settling stopped: " << failure << " ("
               << write_failure_page(dir, r, "dress", inputs) << ")\n";
     return static_cast<int>(ExitCode::simulation_failed);
   }
   for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: " << body << ": warning: " << w << "\n";
+  if (r.padding_ran && r.padding_settle.stalled)
+    std::cerr << "dress-a-mesh: " << body << ": warning: the padding " << r.padding_settle.stopped_reason
+              << "; kept where it stopped (report.json: padding per garment)\n";
   write_folder(
       dir,
       [&](const fs::path& folder) {

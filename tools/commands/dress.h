@@ -11,7 +11,7 @@ namespace dresskit::cli {
 
 struct DressCommand : Command {
   std::string body;
-  std::vector<std::string> garments, fabrics, garment_labels;
+  std::vector<std::string> garments, fabrics, paddings, garment_labels;
   std::string dir, units, body_units, garment_units, up = "+y", body_labels, quality = "fast",
               layers = "given";
   bool no_settle = false, as_json = false, segments = false;

@@ -1,7 +1,7 @@
 #pragma once
 // The dressing pipeline, the product's main job: a body and garments from files to the garments
 // settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
-// how long: load → clean → units → segmentation → layers → placement → thickness → settle.
+// how long: load → clean → units → segmentation → layers → placement → thickness → settle → padding.
 //
 //   const dresskit::dressing::MeshFile body = dresskit::dressing::MeshFile::file("body.obj");
 //   const dresskit::dressing::GarmentFile shirt{dresskit::dressing::MeshFile::file("shirt.obj"), "gray-interlock"};
@@ -17,6 +17,7 @@
 #include "dresskit/cloth/run.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/segmentation/segment.h"
+#include "dresskit/thickness/thickness.h"
 
 namespace dresskit::dressing {
 
@@ -47,6 +48,10 @@ struct MeshFile {
 struct GarmentFile {
   MeshFile file;
   std::string fabric;  ///< a built-in fabric (docs/cloth.md); "" = gray-interlock
+  /// A padded garment (quilted, down, a fleece's pile): dressed as a double layer, its two shells
+  /// kept apart by the thickness heat conduction gives for its fabric (DressOptions::padding), within
+  /// that method's limits. false: one sheet.
+  bool padded = false;
 };
 
 struct DressOptions {
@@ -75,13 +80,16 @@ struct DressOptions {
   /// Trousers and skirts (pieces with leg or skirt parts and no sleeves) are held while settling by
   /// their vertices within this distance of the piece's top, as by a belt [m]; 0: not held.
   double waistband = 0.015;
+  /// The conditions under which a padded garment's thickness and its limits are computed
+  /// (docs/thickness.md): 37 °C skin, −10 °C air, one hour, fibre volume fraction 0.25.
+  thickness::ThicknessOptions padding;
   /// Called when a stage ends, and while settling with the simulated seconds done of at most total.
   std::function<void(const struct DressStage&)> on_stage;
   std::function<void(double done, double total)> on_settle;
 };
 
 struct DressStage {
-  std::string name;      ///< load, clean, units, segmentation, layers, placement, thickness, settle
+  std::string name;      ///< load, clean, units, segmentation, layers, placement, thickness, settle, padding
   bool ran = false;
   double seconds = 0.0;  ///< wall-clock
   std::string reason;    ///< what it did, or why it was left out
@@ -129,6 +137,22 @@ struct SewnPattern {
   std::vector<std::string> warnings;            ///< stitched edges of unequal lengths
 };
 
+/// A padded garment's double layer: the thickness asked and what the shells did.
+struct PaddingFigures {
+  /// Heat conduction's thickness for the fabric and its lower and upper limits [m].
+  double thickness = 0.0, min = 0.0, max = 0.0;
+  /// The shells' distance vertex by vertex, dressed: smallest, 5th percentile, median, largest [m].
+  double gap_min = 0.0, gap_p5 = 0.0, gap_median = 0.0, gap_max = 0.0;
+  /// Vertices whose shells end closer than `min`: the padding held down by what lies over it.
+  int below_min = 0;
+  /// Vertices whose outer shell started at the full thickness (the others started nearer, where
+  /// anything lay closer over them, and were grown out).
+  int start_at_full = 0;
+  /// Edge–triangle crossings of the closed double layer (both shells and the rims joining them)
+  /// where the outer shell started and dressed; a sheet crossing itself counts in both shells.
+  int crossings_start = 0, crossings = 0;
+};
+
 /// Samples of the settle's energy and strain over its duration (DressResult::settle_time).
 inline constexpr int kSettleSamples = 200;
 
@@ -157,6 +181,11 @@ struct DressedGarment {
   double strain_p99_dressed = 0.0;    ///< its 99th percentile over the structural springs
   int springs_over_limit = 0;         ///< structural springs strained beyond kOverLimit
   int waistband_vertices = 0;         ///< vertices held as its waistband while settling
+  /// A padded garment: `dressed` is its inner shell, dressed_outer its outer one (mesh's vertex
+  /// order, [m]), and `padding` says how thick.
+  bool padded = false;
+  Eigen::MatrixX3d dressed_outer;
+  PaddingFigures padding;
   bool from_pattern = false;          ///< sewn from a pattern file (then `pattern` says how)
   SewnPattern pattern;
 };
@@ -171,13 +200,17 @@ struct DressResult {
   std::vector<DressStage> stages;
   bool settled = false;   ///< the settle stage ran
   cloth::RunResult settle;       ///< when it ran
+  /// The padding's growth and settle, when a garment is padded; one that stalled (`stalled`) keeps
+  /// its last state, which crosses nothing but has the padding not grown everywhere.
+  bool padding_ran = false;
+  cloth::RunResult padding_settle;
   /// The settle over time (the attempt kept), sampled after the first step, then after the first
   /// step at least 1/kSettleSamples of the duration later, and after the last step: simulated time
   /// [s], elastic energy [J] and largest structural strain [unitless].
   std::vector<double> settle_time, settle_energy, settle_strain;
   /// Edge–triangle crossings between different garments at the end (0 = the layers kept apart),
   /// and the gap between consecutive layers where they overlap: of the outer garment's vertices
-  /// within 2 cm of the inner one, their count and the 5th percentile and median of their distance
+  /// within 2 cm of the inner one (a padded one: its outer shell), their count and the 5th percentile and median of their distance
   /// to it, against the thickness asked for [m].
   int layer_crossings = 0;
   std::vector<int> layer_gap_vertices;
