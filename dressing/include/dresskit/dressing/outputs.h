@@ -28,7 +28,8 @@ struct DressOutputOptions {
 std::string write_dress_outputs(const std::string& folder, const DressResult& result,
                                 const DressOutputOptions& options = {});
 
-/// For a run whose settling failed (result.settle.ok false): writes report.html alone into `folder`
+/// For a run whose settling or padding failed (result.settle.ok or padding_settle.ok false, the
+/// padding not merely stalled): writes report.html alone into `folder`
 /// (which must exist), saying what failed and showing the garments placed and at the last good
 /// state settling reached, with the report's figures (its JSON included, not written). Throws
 /// OutputError naming the file that cannot be written.
