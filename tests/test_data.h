@@ -3,6 +3,8 @@
 // With CI=true a missing data folder fails the test; elsewhere the test is skipped with a message.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <string>
@@ -14,14 +16,17 @@ namespace dresskit::test {
 inline std::string data_dir() { return testing::data_dir(); }
 inline bool in_ci() { return testing::in_ci(); }
 
-/// A fresh empty directory under the system temporary folder, removed by the destructor.
+/// A fresh empty directory under the system temporary folder, removed by the destructor. Named by
+/// the test's suite and name, the process and a count: tests of one name in two suites (run side
+/// by side by ctest -j) never share one.
 class TempDir {
  public:
   TempDir() {
+    static int made = 0;
     const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
     path_ = std::filesystem::temp_directory_path() /
-            ("dresskit_" + std::string(info ? info->name() : "test") + "_" +
-             std::to_string(std::rand()));
+            ("dresskit_" + (info ? std::string(info->test_suite_name()) + "_" + info->name() : std::string("test")) +
+             "_" + std::to_string(::getpid()) + "_" + std::to_string(made++));
     std::filesystem::remove_all(path_);
     std::filesystem::create_directories(path_);
   }
