@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <numeric>
 #include <optional>
@@ -64,6 +65,11 @@ std::string number(double value, int digits = 3) {
 }
 
 std::string stem(const std::string& path) { return std::filesystem::path(path).stem().string(); }
+
+/// The same vertices and faces (a mesh that cleaning left as it was).
+bool same_mesh(const TriangleMesh& a, const TriangleMesh& b) {
+  return a.V.rows() == b.V.rows() && a.F.rows() == b.F.rows() && a.V == b.V && a.F == b.F;
+}
 
 double height(const TriangleMesh& m) { return m.V.col(1).maxCoeff() - m.V.col(1).minCoeff(); }
 
@@ -226,6 +232,12 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   for (const GarmentFile& g : garment_files) fabrics.push_back(fabric_by_name(g.fabric.empty() ? "gray-interlock" : g.fabric));
 
   std::shared_ptr<const MeshDistance> body_distance;  // the body's, for sewing, untangling and settling
+  // Patterns carried part by part: their bodies with part labels, each read once, and this body's
+  // parts, found once at load and kept for the segmentation stage (unless cleaning changes it).
+  std::map<std::string, TriangleMesh> pattern_bodies;
+  std::optional<TriangleMesh> labelled_body;
+  std::vector<DressPart> labelled_body_parts;
+  bool labelled_body_from_file = false;
 
   // Load.
   {
@@ -254,7 +266,26 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       d.padded = g.padded;
       if (is_pattern_garment(g)) {  // a sewing pattern: cut, sewn, welded
         if (!body_distance) body_distance = std::make_shared<const MeshDistance>(result.body);
-        sew_pattern_garment(g, result.body, body_distance, options, d);
+        PartBodies parts;
+        if (!g.pattern_body.path.empty() || g.pattern_body.mesh) {
+          auto it = pattern_bodies.find(g.pattern_body.path);
+          if (it == pattern_bodies.end()) {
+            TriangleMesh from = load(g.pattern_body);
+            const double tall = height(from);
+            if (!(tall >= 0.5 && tall <= 2.5))
+              throw InputError(g.pattern_body.path + ": the pattern's body is " + number(tall) + " m tall in units " +
+                               g.pattern_body.load.units.name + ": give its units (--pattern-body-units)");
+            bool from_file = false;
+            label(from, g.pattern_body, options.segmentation, from_file);
+            it = pattern_bodies.emplace(g.pattern_body.path, std::move(from)).first;
+          }
+          if (!labelled_body) {
+            labelled_body = result.body;
+            labelled_body_parts = label(*labelled_body, body_file, options.segmentation, labelled_body_from_file);
+          }
+          parts = {&it->second, &*labelled_body};
+        }
+        sew_pattern_garment(g, result.body, body_distance, options, parts, d);
       } else
         d.mesh = load(g.file);
       result.garments.push_back(std::move(d));
@@ -329,7 +360,14 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   {
     Stage stage(result, options, "segmentation");
     int segmented = 0;
-    result.body_parts = label(result.body, body_file, options.segmentation, result.body_labels_from_file);
+    if (labelled_body && same_mesh(*labelled_body, result.body)) {
+      result.body.labels = labelled_body->labels;
+      result.body.label_names = labelled_body->label_names;
+      result.body_parts = labelled_body_parts;
+      result.body_labels_from_file = labelled_body_from_file;
+    } else {
+      result.body_parts = label(result.body, body_file, options.segmentation, result.body_labels_from_file);
+    }
     segmented += !result.body_labels_from_file;
     bool limbs = false;
     for (const DressPart& p : result.body_parts) {
@@ -391,7 +429,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   // fit and outer pieces are pushed out of inner ones.
   const InsideTest inside(result.body);
   // The body's distance, built once (sewing patterns built it at load unless the body changed since).
-  if (!body_distance || body_distance->mesh().V != result.body.V || body_distance->mesh().F != result.body.F)
+  if (!body_distance || !same_mesh(body_distance->mesh(), result.body))
     body_distance = std::make_shared<const MeshDistance>(result.body);
   {
     Stage stage(result, options, "placement");

@@ -97,6 +97,7 @@ json pattern_json(const SewnPattern& p) {
   for (std::size_t k = 0; k < p.panels.size(); ++k) {
     const bool dressed = k < p.panel_area_dressed.size();
     panels.push_back({{"name", p.panels[k]},
+                      {"part", k < p.panel_parts.size() ? json(p.panel_parts[k]) : json(nullptr)},
                       {"area_m2", p.panel_area[k]},
                       {"area_dressed_m2", dressed ? json(p.panel_area_dressed[k]) : json(nullptr)},
                       {"area_change", dressed ? json(p.panel_area_dressed[k] / p.panel_area[k] - 1.0) : json(nullptr)}});
@@ -112,6 +113,7 @@ json pattern_json(const SewnPattern& p) {
           {"panels", panels},
           {"pattern",
            {{"triangles", p.triangles},
+            {"carried_by", p.carried_by},
             {"moved_to_body_m", {p.moved_by.x(), p.moved_by.y(), p.moved_by.z()}},
             {"panels_moved_out", p.panels_moved_out},
             {"cut_seconds", p.cut_seconds},

@@ -6,6 +6,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <stdexcept>
 
 #include "dresskit/cloth/cloth_model.h"
 #include "dresskit/cloth/fabric.h"
@@ -245,7 +246,18 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   bool carried = false;
   int moved_out = 0;
   const BodyFrame here = body.V.rows() > 0 ? body_frame(body) : BodyFrame{};
-  if (body.V.rows() > 0) {
+  if (!options.panel_moves.empty()) {
+    if (options.panel_moves.size() != pattern.panels.size())
+      throw std::invalid_argument("sew_pattern: " + std::to_string(options.panel_moves.size()) +
+                                  " panel moves for " + std::to_string(pattern.panels.size()) + " panels");
+    const Eigen::MatrixX3d before = panels.V;
+    for (Eigen::Index v = 0; v < panels.V.rows(); ++v) {
+      const Eigen::Matrix4d& T = options.panel_moves[std::size_t(cut.panel_of_vertex[v])];
+      panels.V.row(v) = (T.topLeftCorner<3, 3>() * before.row(v).transpose() + T.topRightCorner<3, 1>()).transpose();
+    }
+    if (panels.V.rows() > 0) moved = (panels.V - before).colwise().mean();
+    carried = true;
+  } else if (body.V.rows() > 0) {
     const BodyFrame& from = options.pattern_body;
     if (!(from.height > 0.0))
       throw InputError("the pattern's body height " + std::to_string(from.height) +

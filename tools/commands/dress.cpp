@@ -37,6 +37,12 @@ void DressCommand::add_to(CLI::App& app) {
   command->add_option("--body-labels", body_labels, "part labels of the body (labels JSON): no segmentation");
   command->add_option("--garment-labels", garment_labels,
                       "part labels of each garment in order (one file: all of them, keyed by file stem)");
+  command->add_option("--pattern-body", pattern_body,
+                      "the body the sewing patterns are placed around (GarmentCode's body mesh): their panels "
+                      "are carried to BODY part by part (docs/pattern.md); default: by the bodies' frames");
+  option_with_default(command, "--pattern-body-units", pattern_body_units, "length unit of --pattern-body");
+  command->add_option("--pattern-body-labels", pattern_body_labels,
+                      "part labels of --pattern-body (labels JSON): no segmentation of it");
   option_with_default(command, "--quality", quality, "fast, balanced or accurate");
   option_with_default(command, "--layers", layers,
                       "given: worn inside to outside in the order given; inferred: from the "
@@ -110,6 +116,8 @@ int DressCommand::run() {
     if (padding != "" && padding != "none" && padding != "heat")
       throw InputError("--padding: '" + padding + "' is not none or heat");
     g.padded = padding == "heat";
+    if (!pattern_body.empty())
+      g.pattern_body = MeshFile::file(pattern_body, load_options(pattern_body_units, "", up), pattern_body_labels);
     if (!stems.insert(fs::path(garments[i]).stem().string()).second)
       throw InputError(garments[i] + ": another garment has the same file name; outputs are named by it");
     garment_files.push_back(g);
@@ -130,6 +138,8 @@ int DressCommand::run() {
   std::vector<std::string> inputs = garments;
   inputs.push_back(body);
   inputs.push_back(body_labels);
+  inputs.push_back(pattern_body);
+  inputs.push_back(pattern_body_labels);
   inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
   if ((r.settled && !r.settle.ok) || (r.padding_ran && !r.padding_settle.ok && !r.padding_settle.stalled)) {
     const std::string failure = !r.settle.ok ? r.settle.failure : "padding: " + r.padding_settle.failure;

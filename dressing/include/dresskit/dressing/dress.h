@@ -52,6 +52,12 @@ struct GarmentFile {
   /// kept apart by the thickness heat conduction gives for its fabric (DressOptions::padding), within
   /// that method's limits. false: one sheet.
   bool padded = false;
+  /// A sewing pattern's own body, the one its panels are placed around (GarmentCode's body mesh for
+  /// its patterns), with its units and optional part labels; no path and no mesh: none. Given, the
+  /// panels are carried to the body to dress part by part — each panel follows the part of its body
+  /// it lies over (a sleeve its arm, turned about the shoulder) — rather than by the bodies' frames
+  /// (docs/pattern.md).
+  MeshFile pattern_body = {};
 };
 
 struct DressOptions {
@@ -131,6 +137,11 @@ struct SewnPattern {
   /// then moved out of it along their normals.
   Eigen::Vector3d moved_by = Eigen::Vector3d::Zero();
   int panels_moved_out = 0;
+  /// How the panels came to this body: "as placed" (it is the pattern's body), "frames" (moved
+  /// together by the bodies' frames) or "parts" (each by the part of the pattern's body it lies
+  /// over, GarmentFile::pattern_body); with parts, each panel's part (torso, head, arm_left, ...).
+  std::string carried_by;
+  std::vector<std::string> panel_parts;
   int triangles = 0;
   double cut_seconds = 0.0, sew_seconds = 0.0;  ///< wall-clock
   double sew_simulated = 0.0;                   ///< simulated time sewing took [s]

@@ -40,8 +40,8 @@ struct BodyFrame {
 };
 
 /// A body's frame (+Y up, facing +z): the origin below the centre of the bounding box of the body's
-/// vertices between 55 % and 70 % of its height (the torso, arms beside it; all its vertices where
-/// none lies there), on the level of its lowest point.
+/// vertices between 55 % and 70 % of its height (the torso, and what the pose holds of the arms and
+/// hands at that height; all its vertices where none lies there), on the level of its lowest point.
 BodyFrame body_frame(const mesh::TriangleMesh& body);
 
 struct SewOptions {
@@ -100,6 +100,11 @@ struct SewOptions {
   /// Panels so carried that come closer to the body than this [m] (a larger body) are moved out
   /// along their normals, in steps of it, until every point of them is that far outside.
   double clearance = 0.005;
+  /// Each panel's rigid move onto this body (one 4×4 transform per panel, in the pattern's order),
+  /// found by the caller from the parts of the body the pattern is placed for and of this one
+  /// (dress: docs/pattern.md). Given, it replaces the move by frames (pattern_body); the panels
+  /// are then moved out of the body as there (clearance).
+  std::vector<Eigen::Matrix4d> panel_moves;
 };
 
 struct SewResult {
@@ -119,7 +124,8 @@ struct SewResult {
   std::string stopped;
   std::string method;     ///< "drawn" (at the closing speed) or "seam forces" (the fallback)
   /// How far the panels were moved from where the pattern places them, to this body
-  /// (SewOptions::pattern_body) [m]; zero where the body stands where the pattern's does.
+  /// (SewOptions::pattern_body; with SewOptions::panel_moves, the mean move of their points) [m];
+  /// zero where the body stands where the pattern's does.
   Eigen::Vector3d moved_by = Eigen::Vector3d::Zero();
   /// Of those, the panels then moved out of the body (SewOptions::clearance).
   int panels_moved_out = 0;
