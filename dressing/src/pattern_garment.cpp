@@ -6,10 +6,10 @@
 #include <cmath>
 #include <map>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 
 #include "dresskit/alignment/icp.h"
-
 #include "dresskit/mesh/errors.h"
 #include "dresskit/pattern/cut.h"
 #include "dresskit/pattern/pattern.h"
@@ -124,7 +124,7 @@ PanelMoves panel_moves(const Eigen::MatrixX3d& placed, const Eigen::VectorXi& pa
       }
     return anchors.back().second;
   };
-  const alignment::PointLocator nearest(from.V);
+  const alignment::PointLocator nearest(from.V), onto(to.V);
   PanelMoves r;
   for (int q = 0; q < panels; ++q) {
     std::vector<Eigen::Index> points;
@@ -150,6 +150,31 @@ PanelMoves panel_moves(const Eigen::MatrixX3d& placed, const Eigen::VectorXi& pa
       T.topRightCorner<3, 1>() = torso_move(centre.y());
     else
       T = limb_move(a, b, follows);
+    // Kept as far from the body as the pattern places it: a panel that its move brought nearer to
+    // this body (its least distance to the body's vertices, over the points sampled) is moved out
+    // along its normal by the difference.
+    if (sampled >= 3) {
+      const Eigen::Matrix3d R = T.topLeftCorner<3, 3>();
+      const Eigen::Vector3d t = T.topRightCorner<3, 1>();
+      double before = HUGE_VAL, after = HUGE_VAL;
+      Eigen::Vector3d closest = Eigen::Vector3d::Zero();
+      Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+      for (std::size_t k = 0; k < points.size(); k += stride) {
+        const Eigen::Vector3d p = placed.row(points[k]).transpose();
+        scatter += (p - centre) * (p - centre).transpose();
+        double d2 = 0.0;
+        const int j = nearest.nearest(p, &d2);
+        if (std::sqrt(d2) < before) {
+          before = std::sqrt(d2);
+          closest = from.V.row(j).transpose();
+        }
+        onto.nearest(R * p + t, &d2);
+        after = std::min(after, std::sqrt(d2));
+      }
+      Eigen::Vector3d normal = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(scatter).eigenvectors().col(0);
+      if (normal.dot(centre - closest) < 0.0) normal = -normal;  // away from the body
+      if (after < before) T.topRightCorner<3, 1>() += (before - after) * (R * normal);
+    }
     r.moves.push_back(T);
     r.parts.push_back(kPartNames[follows]);
   }

@@ -35,9 +35,10 @@ void sew_pattern_garment(const GarmentFile& g, const mesh::TriangleMesh& body,
 /// as the arm is (the direction from where the arm meets the torso to the arm's centroid, seen
 /// from the front) and moved with it; over one leg (four fifths), the same about the hip; anywhere
 /// else, moved as the torso is at the panel's height — as the midpoints of the hips, of the
-/// shoulders and the neck are, linearly between.
-/// Panels stay rigid (their rest lengths are the flat pattern's). `placed`: the cut vertices as the
-/// pattern places them, `panel_of_vertex` their panels.
+/// shoulders and the neck are, linearly between. A panel so brought nearer to `to` than it lies to
+/// `from` (the least distance of its points to the body's vertices) is then moved out along its
+/// normal by the difference. Panels stay rigid (their rest lengths are the flat pattern's).
+/// `placed`: the cut vertices as the pattern places them, `panel_of_vertex` their panels.
 struct PanelMoves {
   std::vector<Eigen::Matrix4d> moves;  ///< per panel
   std::vector<std::string> parts;      ///< per panel: torso, head, arm_left, arm_right, leg_left, leg_right

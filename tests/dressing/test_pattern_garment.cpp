@@ -1,11 +1,13 @@
 // A pattern's panels carried from the body they are placed around to another, part by part
 // (dressing/src/pattern_garment.h, panel_moves): checked against the bodies' own geometry — a body
-// moved as a whole moves every panel with it, and from GarmentCode's A-pose to its T-pose the
-// sleeves turn as the arms' principal axes do.
+// moved as a whole moves every panel with it, from GarmentCode's A-pose to its T-pose the sleeves
+// turn as the arms' principal axes do, and on a stouter body every panel keeps its clearance
+// (measured by brute force over all its points).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -76,7 +78,42 @@ void expect_parts_by_name(const CutShirt& s, const PanelMoves& m) {
   }
 }
 
+/// Each panel's least distance from its points (all of them) to the body's vertices [m].
+std::vector<double> clearances(const Eigen::MatrixX3d& points, const Eigen::VectorXi& panel_of_vertex, int panels,
+                               const mesh::TriangleMesh& body) {
+  std::vector<double> least(std::size_t(panels), HUGE_VAL);
+  for (Eigen::Index v = 0; v < points.rows(); ++v) {
+    const double d2 = (body.V.rowwise() - points.row(v)).rowwise().squaredNorm().minCoeff();
+    double& l = least[std::size_t(panel_of_vertex[v])];
+    l = std::min(l, std::sqrt(d2));
+  }
+  return least;
+}
+
 }  // namespace
+
+TEST(PanelMoves, OnAStouterBodyEveryPanelKeepsItsClearance) {
+  DRESSKIT_REQUIRE_DATA();
+  const mesh::TriangleMesh from = labelled_gc_body("gc_mean_all");
+  mesh::TriangleMesh to = from;  // 15 % wider and deeper about the vertical axis through the torso
+  const double cx = from.V.col(0).mean(), cz = from.V.col(2).mean();
+  to.V.col(0) = (to.V.col(0).array() - cx) * 1.15 + cx;
+  to.V.col(2) = (to.V.col(2).array() - cz) * 1.15 + cz;
+  const CutShirt s = cut_shirt();
+  const int panels = int(s.pattern.panels.size());
+  const PanelMoves m = panel_moves(s.cut.placed, s.cut.panel_of_vertex, panels, from, to);
+  Eigen::MatrixX3d moved = s.cut.placed;
+  for (Eigen::Index v = 0; v < moved.rows(); ++v) {
+    const Eigen::Matrix4d& T = m.moves[std::size_t(s.cut.panel_of_vertex[v])];
+    moved.row(v) = (T.topLeftCorner<3, 3>() * s.cut.placed.row(v).transpose() + T.topRightCorner<3, 1>()).transpose();
+  }
+  const std::vector<double> was = clearances(s.cut.placed, s.cut.panel_of_vertex, panels, from),
+                            is = clearances(moved, s.cut.panel_of_vertex, panels, to);
+  // Within the sampling's reach (the clearance is taken over at most 64 points a panel); moved only
+  // by its part, a torso panel would come 2–3 cm nearer.
+  for (int q = 0; q < panels; ++q)
+    EXPECT_GT(is[std::size_t(q)], was[std::size_t(q)] - 0.01) << s.pattern.panels[std::size_t(q)].name;
+}
 
 TEST(PanelMoves, ABodyMovedAsAWholeMovesEveryPanelWithIt) {
   DRESSKIT_REQUIRE_DATA();

@@ -92,8 +92,6 @@ struct SharedPattern {
   /// The body the pattern is placed around, in ../shared/data/bodies (metres): carried by parts
   /// rather than by frames ("": none).
   std::string pattern_body = "";
-  double max_unwelded_gap = 0.003;  ///< [m] pairs left unwelded, held by seams while settling
-  double max_area_change = 0.03;    ///< of a panel's area dressed against flat [unitless]
 };
 
 void PrintTo(const SharedPattern& p, std::ostream* os) { *os << p.name; }
@@ -130,7 +128,8 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
     if (c.pattern_body.empty()) {
       EXPECT_GT(d.pattern.moved_by.z(), 0.05) << c.name;
     } else {
-      EXPECT_NEAR(d.pattern.moved_by.z(), 0.03, 0.02) << c.name;
+      EXPECT_GT(d.pattern.moved_by.z(), 0.0) << c.name;  // forward with the torso, a few cm
+      EXPECT_LT(d.pattern.moved_by.z(), 0.08) << c.name;
       ASSERT_EQ(d.pattern.panel_parts.size(), d.pattern.panels.size());
       for (std::size_t k = 0; k < d.pattern.panels.size(); ++k)
         EXPECT_EQ(d.pattern.panel_parts[k].rfind("arm", 0) == 0,
@@ -153,11 +152,11 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
   EXPECT_LE(count_intersections(d.dressed, d.mesh.F), c.max_crossings) << c.name;
   // Pairs left unwelded (a fold between their sides) are held together by seams while settling.
   for (const auto& [a, b] : d.pattern.unwelded)
-    EXPECT_LT((d.dressed.row(a) - d.dressed.row(b)).norm(), c.max_unwelded_gap) << c.name << " " << a << "-" << b;
+    EXPECT_LT((d.dressed.row(a) - d.dressed.row(b)).norm(), 0.003) << c.name << " " << a << "-" << b;
   // Panel areas within 3 % of the flat pattern's.
   ASSERT_EQ(d.pattern.panel_area_dressed.size(), d.pattern.panels.size());
   for (std::size_t k = 0; k < d.pattern.panels.size(); ++k)
-    EXPECT_NEAR(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k], 1.0, c.max_area_change)
+    EXPECT_NEAR(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k], 1.0, 0.03)
         << c.name << " " << d.pattern.panels[k];
 }
 
@@ -166,9 +165,9 @@ TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
 // the woman, drawing leaves the shirt's pairs open and seam forces close them). The shirt's sewn
 // pairs end up to 1.8 mm apart where its side seams meet its sleeves, with a fold of cloth between
 // some (left unwelded) (docs/pattern.md). The shirt on the young man, whose frames leave a shoulder
-// seam open, is carried by parts from GarmentCode's body, its sleeves turned to his arms: sewn, its
-// pairs held up to 3 mm apart, it keeps the 2 crossings welding leaves, 16 pairs stay unwelded
-// (held up to 8 mm apart once dressed) and the panels' areas change by up to 4.3 %.
+// seam open, is carried by parts from GarmentCode's body, its sleeves turned to his arms and its
+// panels kept as far from him as from that body: sewn by drawing, its pairs held up to 2.8 mm
+// apart.
 INSTANTIATE_TEST_SUITE_P(
     Shared, PatternDress,
     ::testing::Values(SharedPattern{"hoody", "gc_hoody_mean_specification.json", 0.001, 0},
@@ -180,9 +179,8 @@ INSTANTIATE_TEST_SUITE_P(
                                     "mh_woman_young_average", "dm", true, "seam forces"},
                       SharedPattern{"pencil_dress_on_woman", "gc_dress_pencil_specification.json",
                                     0.001, 0, "mh_woman_young_average", "dm", true, "drawn", 0.9},
-                      SharedPattern{"shirt_on_man_by_parts", "gc_shirt_mean_specification.json", 0.004,
-                                    2, "mh_man_young_average", "dm", true, "drawn", 0.95, "gc_mean_all",
-                                    0.01, 0.05}),
+                      SharedPattern{"shirt_on_man_by_parts", "gc_shirt_mean_specification.json", 0.003,
+                                    0, "mh_man_young_average", "dm", true, "drawn", 0.95, "gc_mean_all"}),
     [](const auto& info) { return info.param.name; });
 
 TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
