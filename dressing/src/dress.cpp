@@ -595,10 +595,13 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       // from the same placement with four times the rise allowed a step.
       std::string held;
       if (result.settle.stalled) {
-        held += "; settling " + result.settle.stopped_reason + ", settled again allowing a rise in strain of " +
-                number(4.0 * o.max_strain_change) + " a step";
+        const std::string again = "settling " + result.settle.stopped_reason +
+                                  ", settled again allowing a rise in strain of " +
+                                  number(4.0 * o.max_strain_change) + " a step";
+        held += "; " + again;
         o.max_strain_change *= 4.0;
         settle();
+        result.settle.warnings.insert(result.settle.warnings.begin(), again);
       }
       result.settled = true;
       std::string belts;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "dresskit/mesh/io.h"
@@ -87,4 +88,38 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_EQ(error_lines(r.err), 1) << r.err;
   EXPECT_NE(r.err.find("mh_female_elegantsuit01.obj: the placement stretches it by up to"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("d")));
+  // A bad unit is named with the option that gave it.
+  r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --garment-units furlongs -o " +
+                   dir.file("e"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--garment-units: 'furlongs' is not m, dm, cm, mm"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("e")));
+}
+
+// An output folder that is one of the inputs, or a file: refused before any work, the input
+// untouched. An option for the patterns' body with no pattern among the garments: a warning.
+TEST(DressCli, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
+  DRESSKIT_REQUIRE_DATA();
+  test::TempDir dir;
+  const std::string garment = dir.file("outfit.obj");
+  std::filesystem::copy_file(data(kOutfit), garment);
+  const auto size = std::filesystem::file_size(garment);
+  CliRun r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm -o " + garment);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(error_lines(r.err), 1) << r.err;
+  EXPECT_NE(r.err.find(garment + ": the output folder is an input"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("dress: load"), std::string::npos) << r.err;  // no stage ran
+  EXPECT_EQ(std::filesystem::file_size(garment), size);
+  const std::string file = dir.file("a_file");
+  std::ofstream(file) << "not a folder\n";
+  r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm -o " + file);
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find(file + ": exists and is not a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("dress: load"), std::string::npos) << r.err;
+  r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm --no-settle --pattern-body " + data(kChild) +
+                   " -o " + dir.file("out"));
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: --pattern-body " + data(kChild) + ": no garment is a sewing pattern (.json); not used"),
+            std::string::npos)
+      << r.err;
 }

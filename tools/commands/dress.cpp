@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -11,6 +12,7 @@
 #include "dresskit/dressing/outputs.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/pattern/pattern.h"
 #include "common/output_folder.h"
 #include "common/progress.h"
 
@@ -40,7 +42,8 @@ void DressCommand::add_to(CLI::App& app) {
   command->add_option("--pattern-body", pattern_body,
                       "the body the sewing patterns are placed around (GarmentCode's body mesh): their panels "
                       "are carried to BODY part by part (docs/pattern.md); default: by the bodies' frames");
-  option_with_default(command, "--pattern-body-units", pattern_body_units, "length unit of --pattern-body");
+  command->add_option("--pattern-body-units", pattern_body_units,
+                      "length unit of --pattern-body (overrides --units)");
   command->add_option("--pattern-body-labels", pattern_body_labels,
                       "part labels of --pattern-body (labels JSON): no segmentation of it");
   option_with_default(command, "--quality", quality, "fast, balanced or accurate");
@@ -53,9 +56,18 @@ void DressCommand::add_to(CLI::App& app) {
 }
 
 namespace {
-LoadOptions load_options(const std::string& specific, const std::string& common, const std::string& up) {
+/// The units of one kind of input: its own option (named `option`) where given, else --units, else
+/// metres. A bad value is named with the option that gave it.
+LoadOptions load_options(const char* option, const std::string& specific, const std::string& common,
+                         const std::string& up) {
   LoadOptions o;
-  o.units = Units::parse(!specific.empty() ? specific : !common.empty() ? common : "m");
+  const std::string value = !specific.empty() ? specific : !common.empty() ? common : "m";
+  try {
+    o.units = Units::parse(value);
+  } catch (const InputError&) {
+    throw InputError(std::string(!specific.empty() ? option : "--units") + ": '" + value +
+                     "' is not m, dm, cm, mm or a positive number of metres per file unit");
+  }
   o.up = parse_up_axis(up);
   return o;
 }
@@ -104,12 +116,12 @@ std::string write_failure_page(const std::string& dir, const DressResult& r, con
 }
 
 int DressCommand::run() {
-  const MeshFile body_file = MeshFile::file(body, load_options(body_units, units, up), body_labels);
+  const MeshFile body_file = MeshFile::file(body, load_options("--body-units", body_units, units, up), body_labels);
   std::vector<GarmentFile> garment_files;
   std::set<std::string> stems;
   for (std::size_t i = 0; i < garments.size(); ++i) {
     GarmentFile g;
-    g.file = MeshFile::file(garments[i], load_options(garment_units, units, up),
+    g.file = MeshFile::file(garments[i], load_options("--garment-units", garment_units, units, up),
                             per_garment(garment_labels, i, "--garment-labels", garments.size()));
     g.fabric = per_garment(fabrics, i, "--fabric", garments.size());
     const std::string padding = per_garment(paddings, i, "--padding", garments.size());
@@ -117,11 +129,26 @@ int DressCommand::run() {
       throw InputError("--padding: '" + padding + "' is not none or heat");
     g.padded = padding == "heat";
     if (!pattern_body.empty())
-      g.pattern_body = MeshFile::file(pattern_body, load_options(pattern_body_units, "", up), pattern_body_labels);
+      g.pattern_body = MeshFile::file(pattern_body, load_options("--pattern-body-units", pattern_body_units, units, up), pattern_body_labels);
     if (!stems.insert(fs::path(garments[i]).stem().string()).second)
       throw InputError(garments[i] + ": another garment has the same file name; outputs are named by it");
     garment_files.push_back(g);
   }
+  // Options for the patterns' body that nothing uses are said, not silently dropped.
+  const bool any_pattern = std::any_of(garments.begin(), garments.end(), pattern::is_pattern_file);
+  if (!pattern_body.empty() && !any_pattern)
+    std::cerr << "dress-a-mesh: warning: --pattern-body " << pattern_body
+              << ": no garment is a sewing pattern (.json); not used\n";
+  if (pattern_body.empty() && (!pattern_body_units.empty() || !pattern_body_labels.empty()))
+    std::cerr << "dress-a-mesh: warning: --pattern-body-units and --pattern-body-labels apply to "
+                 "--pattern-body, which is not given; not used\n";
+  std::vector<std::string> inputs = garments;
+  inputs.push_back(body);
+  inputs.push_back(body_labels);
+  inputs.push_back(pattern_body);
+  inputs.push_back(pattern_body_labels);
+  inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
+  check_output_folder(dir, inputs);
   DressOptions options;
   options.quality = parse_quality(quality);
   options.settle = !no_settle;
@@ -135,12 +162,6 @@ int DressCommand::run() {
   for (const DressedGarment& g : r.garments)
     for (const std::string& w : g.pattern.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   std::string report;
-  std::vector<std::string> inputs = garments;
-  inputs.push_back(body);
-  inputs.push_back(body_labels);
-  inputs.push_back(pattern_body);
-  inputs.push_back(pattern_body_labels);
-  inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
   if ((r.settled && !r.settle.ok) || (r.padding_ran && !r.padding_settle.ok && !r.padding_settle.stalled)) {
     const std::string failure = !r.settle.ok ? r.settle.failure : "padding: " + r.padding_settle.failure;
     std::cerr << "dress-a-mesh: " << body << ": settling stopped: " << failure << " ("
@@ -159,6 +180,9 @@ int DressCommand::run() {
         report = write_dress_outputs(folder.string(), r, o);
       },
       inputs);
+  const json written = json::parse(report);
+  const json& write_stage = written["stages"].back();  // timed by the writer: its line like the others'
+  options.on_stage(DressStage{write_stage["name"], write_stage["ran"], write_stage["seconds"], write_stage["reason"]});
   if (as_json) {
     std::cout << report;
   } else {
@@ -171,7 +195,7 @@ int DressCommand::run() {
                   << " seams, largest gap " << 1e3 * g.pattern.max_gap << " mm)";
       std::cout << "\n";
     }
-    std::cout << "wrote " << dir << " in " << json::parse(report)["seconds"].get<double>() << " s\n";
+    std::cout << "wrote " << dir << " in " << written["seconds"].get<double>() << " s\n";
   }
   return 0;
 }

@@ -13,7 +13,7 @@ struct DressCommand : Command {
   std::string body;
   std::vector<std::string> garments, fabrics, paddings, garment_labels;
   std::string dir, units, body_units, garment_units, up = "+y", body_labels, quality = "fast",
-              layers = "given", pattern_body, pattern_body_units = "m", pattern_body_labels;
+              layers = "given", pattern_body, pattern_body_units, pattern_body_labels;
   bool no_settle = false, as_json = false, segments = false;
 
   void add_to(CLI::App& app) override;

@@ -69,4 +69,15 @@ void write_folder(const std::string& dir, const std::function<void(const fs::pat
   }
 }
 
+void check_output_folder(const std::string& dir, const std::vector<std::string>& inputs) {
+  std::error_code ec;
+  if (!fs::exists(dir, ec)) return;
+  for (const std::string& input : inputs) {
+    std::error_code same;
+    if (!input.empty() && fs::equivalent(dir, input, same))
+      throw InputError(dir + ": the output folder is an input; give another -o");
+  }
+  if (!fs::is_directory(dir, ec)) throw OutputError(dir + ": exists and is not a directory");
+}
+
 }  // namespace dresskit::cli

@@ -17,4 +17,8 @@ namespace dresskit::cli {
 void write_folder(const std::string& dir, const std::function<void(const std::filesystem::path&)>& write,
                   const std::vector<std::string>& inputs = {});
 
+/// Before any work: throws InputError when dir is one of `inputs` (a file given as the output
+/// folder), OutputError when dir exists and is not a folder.
+void check_output_folder(const std::string& dir, const std::vector<std::string>& inputs);
+
 }  // namespace dresskit::cli
