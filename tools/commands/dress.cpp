@@ -64,9 +64,9 @@ LoadOptions load_options(const char* option, const std::string& specific, const 
   const std::string value = !specific.empty() ? specific : !common.empty() ? common : "m";
   try {
     o.units = Units::parse(value);
-  } catch (const InputError&) {
-    throw InputError(std::string(!specific.empty() ? option : "--units") + ": '" + value +
-                     "' is not m, dm, cm, mm or a positive number of metres per file unit");
+  } catch (const InputError& e) {  // "units: '…' is not …", named by the option instead
+    const std::string what = e.what();
+    throw InputError(std::string(!specific.empty() ? option : "--units") + what.substr(what.find(':')));
   }
   o.up = parse_up_axis(up);
   return o;
