@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iterator>
 #include <map>
 #include <memory>
 #include <numeric>
@@ -560,6 +561,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       RunOptions run_options;
       run_options.duration = duration;
       std::optional<ClothSimulator> sim;
+      // Particles held where placed besides the waistbands (garment vertex indices per garment).
+      std::vector<std::vector<int>> hold(result.garments.size());
       auto settle = [&] {
         sim.emplace(model, o);
         Eigen::MatrixX3d x(model.rest_positions.rows(), 3);
@@ -567,6 +570,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         for (std::size_t k = 0; k < result.garments.size(); ++k) {
           x.middleRows(first[k], first[k + 1] - first[k]) = result.garments[k].placed;
           for (int v : bands[k]) belt.push_back(first[k] + v);
+          for (int v : hold[k]) belt.push_back(first[k] + v);
         }
         sim->set_state(x, Eigen::MatrixX3d::Zero(x.rows(), 3));
         if (!belt.empty()) sim->set_pinned(belt);
@@ -603,11 +607,49 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         settle();
         result.settle.warnings.insert(result.settle.warnings.begin(), again);
       }
+      // Cloth–cloth collisions leave out pairs whose sides both lie in a crossing at a step's
+      // start, so that a garment can drape out of the crossings placement left; but where a garment
+      // crosses itself as authored (layered details: folded hems, lapels through a jacket), its
+      // tangled parts may pass further through each other instead. A settle that leaves a garment
+      // crossing itself more often than as authored is run again with the particles of the
+      // crossings it has both as authored and as placed held where they were placed; the run with
+      // fewer crossings is kept.
+      const auto own_crossings = [&](std::size_t k) {
+        return count_intersections(sim->positions().middleRows(first[k], first[k + 1] - first[k]),
+                                   result.garments[k].mesh.F);
+      };
+      int tangled = 0, before = 0, after = 0;
+      for (std::size_t k = 0; k < result.garments.size(); ++k) {
+        const DressedGarment& g = result.garments[k];
+        const int crossings = own_crossings(k);
+        before += crossings;
+        if (crossings <= g.crossings_authored) continue;
+        const std::vector<int> authored = crossing_vertices(g.mesh.V, g.mesh.F), placed = crossing_vertices(g.placed, g.mesh.F);
+        std::set_intersection(authored.begin(), authored.end(), placed.begin(), placed.end(), std::back_inserter(hold[k]));
+        tangled += static_cast<int>(hold[k].size());
+      }
+      if (result.settle.ok && tangled > 0) {
+        std::optional<ClothSimulator> free_sim = std::move(sim);
+        const RunResult free_run = result.settle;
+        const std::vector<double> t = result.settle_time, e = result.settle_energy, st = result.settle_strain;
+        settle();
+        for (std::size_t k = 0; k < result.garments.size(); ++k) after += own_crossings(k);
+        if (result.settle.ok && after < before) {
+          held += "; settled again holding " + std::to_string(tangled) + " particles of the garments' own crossings as authored (" +
+                  std::to_string(before) + " → " + std::to_string(after) + " crossings)";
+        } else {
+          sim = std::move(free_sim);
+          result.settle = free_run;
+          result.settle_time = t, result.settle_energy = e, result.settle_strain = st;
+          for (auto& h : hold) h.clear();
+        }
+      }
       result.settled = true;
       std::string belts;
       for (std::size_t k = 0; k < result.garments.size(); ++k) {
         DressedGarment& g = result.garments[k];
         g.dressed = sim->positions().middleRows(first[k], first[k + 1] - first[k]);
+        g.tangle_held_vertices = static_cast<int>(hold[k].size());
         if (g.waistband_vertices > 0)
           belts += "; waistband of " + g.name + " held (" + std::to_string(g.waistband_vertices) + " vertices)";
       }

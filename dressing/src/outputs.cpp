@@ -155,6 +155,7 @@ json report_json(const DressResult& r) {
          {"strain_p99", g.strain_p99_dressed},
          {"springs_over_limit", g.springs_over_limit},
          {"waistband_vertices", g.waistband_vertices},
+         {"tangle_held_vertices", g.tangle_held_vertices},
          {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
     if (g.from_pattern) garments.back().update(pattern_json(g.pattern));
     if (g.padded) garments.back()["padding"] = padding_json(g);

@@ -192,6 +192,9 @@ struct DressedGarment {
   double strain_p99_dressed = 0.0;    ///< its 99th percentile over the structural springs
   int springs_over_limit = 0;         ///< structural springs strained beyond kOverLimit
   int waistband_vertices = 0;         ///< vertices held as its waistband while settling
+  /// Particles of its own crossings as authored held where placed while settling (0: none; a settle
+  /// that left it crossing itself more often than as authored was run again so, and kept).
+  int tangle_held_vertices = 0;
   /// A padded garment: `dressed` is its inner shell, dressed_outer its outer one (mesh's vertex
   /// order, [m]), and `padding` says how thick.
   bool padded = false;
