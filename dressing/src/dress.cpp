@@ -634,10 +634,12 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         const std::vector<double> t = result.settle_time, e = result.settle_energy, st = result.settle_strain;
         settle();
         for (std::size_t k = 0; k < result.garments.size(); ++k) after += own_crossings(k);
+        held += "; settled again holding " + std::to_string(tangled) + " particles of the garments' own crossings as authored";
         if (result.settle.ok && after < before) {
-          held += "; settled again holding " + std::to_string(tangled) + " particles of the garments' own crossings as authored (" +
-                  std::to_string(before) + " → " + std::to_string(after) + " crossings)";
+          held += " (" + std::to_string(before) + " → " + std::to_string(after) + " crossings)";
         } else {
+          held += ", not kept (" + (result.settle.ok ? std::to_string(after) + " crossings against " + std::to_string(before)
+                                                     : result.settle.stopped_reason) + ")";
           sim = std::move(free_sim);
           result.settle = free_run;
           result.settle_time = t, result.settle_energy = e, result.settle_strain = st;
