@@ -68,7 +68,7 @@ Collider Collider::mesh(std::shared_ptr<const MeshDistance> body, double frictio
   return c;
 }
 
-double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const {
+double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward, MeshDistance::Cell* cell) const {
   switch (kind) {
     case Kind::plane:
       *outward = normal;
@@ -111,7 +111,7 @@ double Collider::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) co
       return std::max(qr, qa);
     }
     case Kind::mesh:
-      return body->distance(p, outward);
+      return body->distance(p, outward, cell);
   }
   return 0.0;
 }

@@ -171,7 +171,7 @@ bool MeshDistance::inside(const Eigen::Vector3d& p) const {
   return value < 0.0;
 }
 
-double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const {
+double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward, Cell* cell) const {
   const Eigen::Vector3d u = (p - origin_) * inv_h_;
   const int i = static_cast<int>(std::floor(u[0])), j = static_cast<int>(std::floor(u[1])),
             k = static_cast<int>(std::floor(u[2]));
@@ -185,17 +185,24 @@ double MeshDistance::distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward
     return band_ + (p - inside).norm();
   }
   const double fx = u[0] - i, fy = u[1] - j, fz = u[2] - k;
-  double c000, c100, c010, c110, c001, c101, c011, c111;
-  if ((i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7) {  // all eight corners in one brick
-    const float* c = &phi_[index(i, j, k)];
-    c000 = c[0], c100 = c[1], c010 = c[8], c110 = c[9];
-    c001 = c[64], c101 = c[65], c011 = c[72], c111 = c[73];
-  } else {
-    c000 = phi_[index(i, j, k)], c100 = phi_[index(i + 1, j, k)];
-    c010 = phi_[index(i, j + 1, k)], c110 = phi_[index(i + 1, j + 1, k)];
-    c001 = phi_[index(i, j, k + 1)], c101 = phi_[index(i + 1, j, k + 1)];
-    c011 = phi_[index(i, j + 1, k + 1)], c111 = phi_[index(i + 1, j + 1, k + 1)];
+  const int key = index(i, j, k);
+  float local[8];
+  float* c = cell ? cell->corner : local;  // x fastest, then y, then z
+  if (!cell || cell->key != key) {
+    if ((i & 7) != 7 && (j & 7) != 7 && (k & 7) != 7) {  // all eight corners in one brick
+      const float* b = &phi_[key];
+      c[0] = b[0], c[1] = b[1], c[2] = b[8], c[3] = b[9];
+      c[4] = b[64], c[5] = b[65], c[6] = b[72], c[7] = b[73];
+    } else {
+      c[0] = phi_[key], c[1] = phi_[index(i + 1, j, k)];
+      c[2] = phi_[index(i, j + 1, k)], c[3] = phi_[index(i + 1, j + 1, k)];
+      c[4] = phi_[index(i, j, k + 1)], c[5] = phi_[index(i + 1, j, k + 1)];
+      c[6] = phi_[index(i, j + 1, k + 1)], c[7] = phi_[index(i + 1, j + 1, k + 1)];
+    }
+    if (cell) cell->key = key;
   }
+  const double c000 = c[0], c100 = c[1], c010 = c[2], c110 = c[3];
+  const double c001 = c[4], c101 = c[5], c011 = c[6], c111 = c[7];
   const double deep = -band_ * 0.999;
   const double lowest = std::min({c000, c100, c010, c110, c001, c101, c011, c111});
   if (lowest <= deep) return exact_distance(p, outward);

@@ -289,7 +289,7 @@ int ProjectiveDynamics::solve(ClothSimulator& sim, const Eigen::MatrixX3d& targe
       Eigen::Vector3d normal;
       for (int ci = 0; ci < colliders; ++ci) {
         Eigen::Vector3d nc;
-        const double g = sim.options_.colliders[ci].distance(p, &nc) - margin;
+        const double g = sim.options_.colliders[ci].distance(p, &nc, sim.lookup_cell(v, ci)) - margin;
         if (g < gap) gap = g, nearest = ci, normal = nc;
       }
       if (nearest != cf.collider[v]) f = 0.0;

@@ -103,7 +103,7 @@ void ClothSimulator::collide(const Eigen::MatrixX3d& x_start, StepResult& r) {
       // Every point of the path x0 → x is within the farther of its two ends from the last lookup.
       const double travel = std::max((x - row(lookup_x_[ci], i)).norm(), (x0 - row(lookup_x_[ci], i)).norm());
       if (lookup_d_(i, ci) - 1.75 * travel > margin + delta + 1e-4) continue;
-      const double d = c.distance(x, &n);
+      const double d = c.distance(x, &n, lookup_cell(i, ci));
       lookup_d_(i, ci) = d;
       lookup_x_[ci].row(i) = x.transpose();
       if (c.penalty > 0.0 && d < margin + delta) contacts_.add(i, ci, n, margin + delta - std::max(d, margin));

@@ -157,6 +157,33 @@ TEST(MeshDistance, SphereMatchesExactDistanceAndWindingNumber) {
   EXPECT_LT(n.z(), -0.99);
 }
 
+// A particle's cached cell gives the lookup without the cache to the bit: along random walks of
+// steps much shorter than a cell (most lookups from the cache) and much longer (a new cell each
+// time), near the surface, deep inside, across brick borders and beyond the grid.
+TEST(MeshDistance, ACachedCellGivesTheSameValueToTheBit) {
+  const TriangleMesh sphere = test::sphere_mesh(Eigen::Vector3d(0.0, 0.5, 0.0), 0.25, 0.02);
+  const MeshDistance distance(sphere);
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int cached = 0, lookups = 0;
+  for (const double stride : {0.0004, 0.02}) {
+    for (int walk = 0; walk < 40; ++walk) {
+      MeshDistance::Cell cell;
+      Eigen::Vector3d p = Eigen::Vector3d(0.0, 0.5, 0.0) + 0.35 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+      for (int step = 0; step < 200; ++step, ++lookups) {
+        p += stride * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        const int key = cell.key;
+        Eigen::Vector3d n_plain, n_cached;
+        const double plain = distance.distance(p, &n_plain), with_cell = distance.distance(p, &n_cached, &cell);
+        cached += cell.key == key;
+        ASSERT_EQ(plain, with_cell) << "at (" << p.transpose() << ")";
+        ASSERT_EQ(n_plain, n_cached);
+      }
+    }
+  }
+  EXPECT_GT(cached, lookups / 4);  // the short walks mostly stay in their cells
+}
+
 TEST(MeshDistance, BadOptionsAreRejected) {
   const TriangleMesh sphere = test::sphere_mesh(Eigen::Vector3d::Zero(), 0.25, 0.05);
   MeshDistanceOptions o;

@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-namespace dresskit::cloth {
+#include "dresskit/cloth/mesh_distance.h"
 
-class MeshDistance;
+namespace dresskit::cloth {
 
 struct Collider {
   enum class Kind { plane, sphere, box, cylinder, mesh };
@@ -38,7 +38,9 @@ struct Collider {
   static Collider mesh(std::shared_ptr<const MeshDistance> body, double friction = 0.5);
 
   /// Signed distance [m] from p to the surface (negative inside) and the outward unit normal there.
-  double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward) const;
+  /// `cell`: a mesh collider's lookup cache for the particle at p (MeshDistance::Cell), or null;
+  /// the other kinds do not use it.
+  double distance(const Eigen::Vector3d& p, Eigen::Vector3d* outward, MeshDistance::Cell* cell = nullptr) const;
 };
 
 }  // namespace dresskit::cloth

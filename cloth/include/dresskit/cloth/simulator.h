@@ -344,6 +344,14 @@ class ClothSimulator {
   /// Per collider: each particle's position and distance at its last lookup in collide().
   std::vector<Eigen::MatrixX3d> lookup_x_;
   Eigen::MatrixXd lookup_d_;
+  /// Per particle and collider (particle-major): the body grid cell of its last lookup, so that a
+  /// particle looked up again in the same cell reads its corners from here (MeshDistance::Cell).
+  mutable std::vector<MeshDistance::Cell> lookup_cell_;
+  MeshDistance::Cell* lookup_cell(int i, int c) const {
+    const std::size_t colliders = options_.colliders.size(), want = static_cast<std::size_t>(x_.rows()) * colliders;
+    if (lookup_cell_.size() != want) lookup_cell_.assign(want, MeshDistance::Cell{});
+    return &lookup_cell_[static_cast<std::size_t>(i) * colliders + static_cast<std::size_t>(c)];
+  }
   /// Projective dynamics' contacts (projective.collisions): per particle the normal contact force
   /// [N] (0: none), its collider (−1: none) and its normal at the last pass, kept between steps.
   struct ContactForces {
