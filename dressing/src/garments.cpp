@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <utility>
 
 #include "dresskit/cloth/seams.h"
@@ -55,6 +57,26 @@ std::pair<Eigen::MatrixX3d, int> fit_outside(const DressedGarment& g, const Eige
 }
 
 }  // namespace
+
+std::vector<std::string> dressed_warnings(const DressedGarment& g) {
+  std::vector<std::string> w;
+  if (g.crossings_dressed > g.crossings_authored)
+    w.push_back(g.name + " crosses itself " + std::to_string(g.crossings_dressed) + " times (" +
+                std::to_string(g.crossings_authored) + (g.from_pattern ? " as sewn)" : " as authored)"));
+  if (g.inside_dressed > 0)
+    w.push_back(g.name + " has " + std::to_string(g.inside_dressed) + " vertices deeper than 2 mm inside the body");
+  const SewnPattern& p = g.pattern;
+  for (std::size_t k = 0; k < p.panel_area_dressed.size() && k < p.panel_area.size(); ++k) {
+    const double change = p.panel_area_dressed[k] / p.panel_area[k] - 1.0;
+    if (!(std::abs(change) <= kPanelAreaChange)) {
+      char percent[32];
+      std::snprintf(percent, sizeof percent, "%.3g", 100.0 * std::abs(change));
+      w.push_back(g.name + ": panel '" + p.panels[k] + "' " + (change > 0.0 ? "grew" : "shrank") + " by " + percent +
+                  " % of its flat area");
+    }
+  }
+  return w;
+}
 
 /// The garment's rest shape for settling: as made, graded by the placement's size change.
 TriangleMesh rest_shape(const DressedGarment& g) {

@@ -32,6 +32,11 @@ void untangle_along_path(std::vector<DressedGarment>& garments, std::size_t k);
 /// dressed: a padded garment's two shells).
 int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at);
 
+/// What the dressed garment got wrong (DressedGarment::warnings), from its counts and panel areas:
+/// crossing itself more often than as authored (as sewn), vertices inside the body, a panel's area
+/// changed by more than kPanelAreaChange.
+std::vector<std::string> dressed_warnings(const DressedGarment& g);
+
 /// Part names of a garment's legs (trouser legs, skirt parts) and of its sleeves.
 bool names_legs(const std::string& part);
 bool names_sleeves(const std::string& part);

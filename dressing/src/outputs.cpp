@@ -156,6 +156,7 @@ json report_json(const DressResult& r) {
          {"springs_over_limit", g.springs_over_limit},
          {"waistband_vertices", g.waistband_vertices},
          {"tangle_held_vertices", g.tangle_held_vertices},
+         {"warnings", g.warnings},
          {"outputs", {{"placed", g.name + ".placed.obj"}, {"dressed", g.name + ".dressed.obj"}}}});
     if (g.from_pattern) garments.back().update(pattern_json(g.pattern));
     if (g.padded) garments.back()["padding"] = padding_json(g);

@@ -217,10 +217,17 @@ TEST(Dress, AGarmentCrossingItselfAsAuthoredDoesNotTangleFurther) {
   EXPECT_EQ(g.crossings_authored, 43);
   EXPECT_GT(g.tangle_held_vertices, 0);
   EXPECT_LT(g.tangle_held_vertices, g.dressed.rows() / 20);
-  EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored + 5);
+  const int crossings = count_intersections(g.dressed, g.mesh.F);
+  EXPECT_LE(crossings, g.crossings_authored + 5);
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
   EXPECT_LT(g.max_strain_dressed, 0.11);
   EXPECT_NE(stage(r, "settle").reason.find("holding"), std::string::npos) << stage(r, "settle").reason;
+  // Crossing itself more often than as authored is said, with the recounted figure.
+  const std::vector<std::string> said =
+      crossings > 43 ? std::vector<std::string>{"mh_female_elegantsuit01 crosses itself " + std::to_string(crossings) +
+                                                " times (43 as authored)"}
+                     : std::vector<std::string>{};
+  EXPECT_EQ(g.warnings, said);
 }
 
 // The same garment in decimetres on a body in metres with another topology: handed to settling
@@ -245,6 +252,7 @@ TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
   EXPECT_LE(g.crossings_placed, g.crossings_authored);
   EXPECT_LE(count_intersections(g.dressed, g.mesh.F), g.crossings_authored);
+  EXPECT_TRUE(g.warnings.empty()) << g.warnings.front();
   const TriangleBvh tree(r.body.V, r.body.F);
   int near = 0;
   for (Eigen::Index i = 0; i < g.dressed.rows(); ++i) {

@@ -169,6 +169,8 @@ int DressCommand::run() {
     return static_cast<int>(ExitCode::simulation_failed);
   }
   for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: " << body << ": warning: " << w << "\n";
+  for (const DressedGarment& g : r.garments)
+    for (const std::string& w : g.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   if (r.padding_ran && r.padding_settle.stalled)
     std::cerr << "dress-a-mesh: " << body << ": warning: the padding " << r.padding_settle.stopped_reason
               << "; kept where it stopped (report.json: padding per garment)\n";

@@ -171,6 +171,10 @@ inline constexpr int kSettleSamples = 200;
 /// simulator's 10 % and the length limits' tolerance.
 inline constexpr double kOverLimit = 0.11;
 
+/// A pattern's panel whose area dressed differs from its flat area by more than this share is
+/// reported (DressedGarment::warnings): cloth drapes by bending, and stretches by a few percent.
+inline constexpr double kPanelAreaChange = 0.03;
+
 struct DressedGarment {
   std::string name;    ///< the file's stem, or the name of a mesh given in memory; unique
   std::string fabric;
@@ -202,6 +206,10 @@ struct DressedGarment {
   PaddingFigures padding;
   bool from_pattern = false;          ///< sewn from a pattern file (then `pattern` says how)
   SewnPattern pattern;
+  /// What the dressed garment got wrong, one sentence each: crossing itself more often than as
+  /// authored (a pattern: as sewn), vertices deeper than 2 mm inside the body, a panel's area
+  /// changed by more than kPanelAreaChange. Empty: none of these.
+  std::vector<std::string> warnings;
 };
 
 struct DressResult {
