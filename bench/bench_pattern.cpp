@@ -7,8 +7,11 @@
 // OUT.csv. Sewing and settling are chaotic: a change of the input far below any tolerance (a
 // picometre) leads to another run, faster or slower, so a figure is a distribution. Trial 0 dresses
 // the body as read; trial t > 0 moves each body vertex by t picometres along one axis, times a sine
-// of its index.
-//   bench_pattern OUT.csv [--edge 0.02] [--patterns a,b] [--trials 1]
+// of its index. --body dresses another of the shared bodies (a name under bodies/, in its units),
+// with the panels carried by frames, or by parts with --pattern-body (the pattern's own body); a
+// pattern refused on that body (dress throws InputError) makes a row whose outcome says so.
+//   bench_pattern OUT.csv [--edge 0.02] [--patterns a,b] [--trials 1] [--body gc_mean_all]
+//                 [--body-units m] [--pattern-body NAME]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -22,6 +25,7 @@
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/dressing/dress.h"
+#include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/inside.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/testing/data.h"
@@ -35,18 +39,26 @@ using namespace dresskit;
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::cerr << "usage: bench_pattern OUT.csv [--edge 0.02] [--patterns gc_shirt_mean,...] "
-                 "[--trials 1]\n";
+                 "[--trials 1] [--body gc_mean_all] [--body-units m] [--pattern-body NAME]\n";
     return 64;
   }
   double edge = 0.02;
   int trials = 1;
   std::vector<std::string> patterns = {"gc_shirt_mean", "gc_hoody_mean", "gc_dress_pencil"};
+  std::string body_name = "gc_mean_all", pattern_body;
+  LoadOptions body_load;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string key = argv[i], value = argv[i + 1];
     if (key == "--edge") {
       edge = std::stod(value);
     } else if (key == "--trials") {
       trials = std::stoi(value);
+    } else if (key == "--body") {
+      body_name = value;
+    } else if (key == "--body-units") {
+      body_load.units = Units::parse(value);
+    } else if (key == "--pattern-body") {
+      pattern_body = value;
     } else if (key == "--patterns") {
       patterns.clear();
       std::stringstream s(value);
@@ -57,12 +69,12 @@ int main(int argc, char** argv) {
     }
   }
   const std::string data = testing::data_dir();
-  const std::string body_path = data + "/bodies/gc_mean_all.obj";
+  const std::string body_path = data + "/bodies/" + body_name + ".obj";
   std::ofstream csv(argv[1]);
-  const TriangleMesh body_as_read = load_mesh(body_path);
-  csv << "pattern,trial,edge_m,triangles,seconds_total,seconds_cut,seconds_sew,seconds_settle,"
+  const TriangleMesh body_as_read = load_mesh(body_path, body_load);
+  csv << "body,pattern,trial,edge_m,triangles,seconds_total,seconds_cut,seconds_sew,seconds_settle,"
          "sew_simulated_s,max_gap_mm,unwelded_pairs,sewn_crossings,inside_2mm,dressed_crossings,near_8cm_fraction,"
-         "max_panel_area_change\n";
+         "max_panel_area_change,outcome\n";
   std::cout << "CPU: " << bench::cpu_model() << "\n";
   for (const std::string& name : patterns)
     for (int trial = 0; trial < trials; ++trial) {
@@ -71,9 +83,21 @@ int main(int argc, char** argv) {
         jittered.V(v, (v * 7) % 3) += trial * 1e-12 * std::sin(1.7 * static_cast<double>(v));
       GarmentFile g;
       g.file = MeshFile::file(data + "/patterns/" + name + "_specification.json");
+      if (!pattern_body.empty()) g.pattern_body = MeshFile::file(data + "/bodies/" + pattern_body + ".obj");
       DressOptions o;
       o.pattern_edge_length = edge;
-      const DressResult r = dress(MeshFile::given(body_path, jittered), {g}, o);
+      const auto start = std::chrono::steady_clock::now();
+      DressResult r;
+      try {
+        r = dress(MeshFile::given(body_path, jittered), {g}, o);
+      } catch (const InputError& e) {  // a pattern that does not sew on this body: a row that says so
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        csv << body_name << "," << name << "," << trial << "," << edge << ",," << seconds
+            << ",,,,,,,,,,,,refused\n";
+        std::cout << name << " (trial " << trial << "): refused after " << seconds << " s: " << e.what()
+                  << std::endl;
+        continue;
+      }
       const DressedGarment& d = r.garments[0];
       double settle = 0.0;
       for (const DressStage& s : r.stages)
@@ -90,12 +114,12 @@ int main(int argc, char** argv) {
       for (std::size_t k = 0; k < d.pattern.panel_area_dressed.size(); ++k)
         area_change = std::max(
             area_change, std::abs(d.pattern.panel_area_dressed[k] / d.pattern.panel_area[k] - 1.0));
-      csv << name << "," << trial << "," << edge << "," << d.pattern.triangles << "," << r.seconds
+      csv << body_name << "," << name << "," << trial << "," << edge << "," << d.pattern.triangles << "," << r.seconds
           << "," << d.pattern.cut_seconds << "," << d.pattern.sew_seconds << "," << settle << ","
           << d.pattern.sew_simulated << "," << 1e3 * d.pattern.max_gap << ","
           << d.pattern.unwelded.size() << "," << d.crossings_authored << "," << d.inside_dressed
           << "," << d.crossings_dressed << "," << double(near) / double(d.dressed.rows()) << ","
-          << area_change << "\n";
+          << area_change << ",dressed\n";
       std::cout << name << " (trial " << trial << "): " << r.seconds << " s (cut "
                 << d.pattern.cut_seconds << ", sew " << d.pattern.sew_seconds << ", settle "
                 << settle << "), " << d.pattern.triangles << " triangles, gap "
