@@ -39,6 +39,13 @@ std::string garment_list(const DressResult& r) {
 
 void add_tables(const DressResult& r, ReportPage& page) {
   std::vector<std::vector<std::string>> rows;
+  // First what went wrong, where it cannot be missed.
+  for (const std::string& w : r.settle.warnings) rows.push_back({"settle", w});
+  for (const DressedGarment& g : r.garments)
+    for (const std::string& w : g.warnings) rows.push_back({g.name, w});
+  if (!rows.empty())
+    page.sections.push_back(ReportSection::table_of("Warnings", {"about", "warning"}, rows));
+  rows.clear();
   std::vector<std::string> labels;
   std::vector<double> seconds;
   for (const DressStage& s : r.stages) {

@@ -22,6 +22,7 @@
 #include "dresskit/mesh/topology.h"
 #include "dresskit/testing/errors.h"
 #include "dresskit/thickness/thickness.h"
+#include "report_page.h"
 #include "test_data.h"
 
 using namespace dresskit;
@@ -228,6 +229,13 @@ TEST(Dress, AGarmentCrossingItselfAsAuthoredDoesNotTangleFurther) {
                                                 " times (43 as authored)"}
                      : std::vector<std::string>{};
   EXPECT_EQ(g.warnings, said);
+  // The report page shows them first.
+  const report::ReportPage page = dressing::detail::dress_page(r, "dress", "");
+  ASSERT_FALSE(page.sections.empty());
+  EXPECT_EQ(page.sections.front().title == "Warnings", !said.empty());
+  if (!said.empty()) {
+    EXPECT_EQ(page.sections.front().rows.back(), (std::vector<std::string>{g.name, said[0]}));
+  }
 }
 
 // The same garment in decimetres on a body in metres with another topology: handed to settling
