@@ -53,6 +53,25 @@ TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
     if (ok) result.F.row(kept++) = face.transpose();
   }
   result.F.conservativeResize(kept, 3);
+  // The file's texture coordinates and quads, in its vertex order (the writer keeps a quad whose
+  // two triangles are both among the faces).
+  const auto file_vertex = [&](int i) { return original.source_vertex.size() ? original.source_vertex(i) : i; };
+  if (original.UV.rows() == original.num_vertices() && original.num_vertices() > 0) {
+    result.UV = Eigen::MatrixX2d::Zero(count, 2);
+    for (int i = 0; i < original.num_vertices(); ++i)
+      if (file_vertex(i) >= 0 && file_vertex(i) < count) result.UV.row(file_vertex(i)) = original.UV.row(i);
+  }
+  result.quads.resize(original.quads.rows(), 4);
+  int quads = 0;
+  for (Eigen::Index q = 0; q < original.quads.rows(); ++q) {
+    bool ok = true;
+    for (int k = 0; k < 4; ++k) {
+      result.quads(quads, k) = file_vertex(original.quads(q, k));
+      ok = ok && result.quads(quads, k) >= 0 && result.quads(quads, k) < count;
+    }
+    quads += ok;
+  }
+  result.quads.conservativeResize(quads, 4);
   return result;
 }
 
@@ -177,7 +196,8 @@ json report_json(const DressResult& r) {
                 {"parts", parts_json(r.body_parts)}}},
       {"garments", garments},
       {"quality", to_string(r.quality)},
-      {"layers", {{"count", r.garments.size()}, {"crossings_between", r.layer_crossings}, {"gaps", gaps}}}};
+      {"layers", {{"count", r.garments.size()}, {"crossings_between", r.layer_crossings}, {"gaps", gaps}}},
+      {"warnings", r.warnings}};
   if (r.settled) {
     report["settle"] = {{"stopped_reason", r.settle.stopped_reason},
                         {"steps", r.settle.totals.steps},

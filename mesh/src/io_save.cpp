@@ -105,7 +105,7 @@ std::vector<std::vector<int>> output_polygons(const TriangleMesh& m) {
 }
 
 std::string obj_text(const TriangleMesh& m) {
-  std::string out = "# dresskit OBJ: metres, +Y up\n";
+  std::string out = "# dresskit OBJ\n";
   out.reserve(static_cast<size_t>(m.num_vertices()) * 80 + static_cast<size_t>(m.num_faces()) * 30);
   for (int i = 0; i < m.num_vertices(); ++i) {
     out += "v";

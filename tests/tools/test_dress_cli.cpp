@@ -52,6 +52,11 @@ TEST(DressCli, WritesTheDressedOutfitAndAReportOfEveryStage) {
   ASSERT_EQ(dressed.num_vertices(), source.num_vertices());
   EXPECT_TRUE(dressed.V.allFinite());
   EXPECT_LT(dressed.V.col(1).maxCoeff() - dressed.V.col(1).minCoeff(), 1.2);  // metres after loading as dm
+  // With the file's quads and texture coordinates (a textured garment stays textured).
+  EXPECT_EQ(dressed.quads.rows(), source.quads.rows());
+  ASSERT_EQ(dressed.UV.rows(), source.UV.rows());
+  EXPECT_EQ(dressed.quads, source.quads);
+  EXPECT_EQ(dressed.UV, source.UV);
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/mh_female_casualsuit01.placed.obj")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/dressed.glb")));
 }
@@ -96,7 +101,7 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("e")));
 }
 
-// An output folder that is one of the inputs, or a file: refused before any work, the input
+// An output folder that is one of the inputs, a file, or under a file: refused before any work, the input
 // untouched. An option for the patterns' body with no pattern among the garments: a warning.
 TEST(DressCli, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
   DRESSKIT_REQUIRE_DATA();
@@ -115,6 +120,11 @@ TEST(DressCli, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
   r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm -o " + file);
   EXPECT_EQ(r.code, 3);
   EXPECT_NE(r.err.find(file + ": exists and is not a directory"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("dress: load"), std::string::npos) << r.err;
+  r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm -o " + file + "/sub/out");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find(file + "/sub/out: cannot be made: "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a_file is not a directory"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("dress: load"), std::string::npos) << r.err;
   r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm --no-settle --pattern-body " + data(kChild) +
                    " -o " + dir.file("out"));

@@ -71,7 +71,17 @@ void write_folder(const std::string& dir, const std::function<void(const fs::pat
 
 void check_output_folder(const std::string& dir, const std::vector<std::string>& inputs) {
   std::error_code ec;
-  if (!fs::exists(dir, ec)) return;
+  if (!fs::exists(dir, ec)) {
+    // A folder to be made under a file cannot be: said before any work rather than after it.
+    for (fs::path up = fs::absolute(dir, ec).parent_path(); !up.empty(); up = up.parent_path()) {
+      if (fs::exists(up, ec)) {
+        if (!fs::is_directory(up, ec)) throw OutputError(dir + ": cannot be made: " + up.string() + " is not a directory");
+        break;
+      }
+      if (up == up.parent_path()) break;
+    }
+    return;
+  }
   for (const std::string& input : inputs) {
     std::error_code same;
     if (!input.empty() && fs::equivalent(dir, input, same))
