@@ -495,7 +495,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         untangle(result.garments, k, *body_distance, options.placement.clearance);
         untangle_along_path(result.garments, k);
         report += "; " + g.name + ": crossing itself " + std::to_string(g.crossings_fitted) + " times as fitted, " +
-                  std::to_string(g.crossings_placed) + " untangled (" +
+                  std::to_string(g.crossings_placed) + " after untangling (" +
                   std::to_string(g.crossings_authored) + " as authored)";
       }
       g.inside_placed = surface_fit(g.placed, inside).inside;
@@ -686,6 +686,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   }
 
   result.layer_crossings = crossings_between(result.garments, &DressedGarment::dressed);
+  if (result.layer_crossings > 0)
+    result.warnings.push_back("the garments cross each other " + std::to_string(result.layer_crossings) + " times");
   for (std::size_t k = 0; k < result.garments.size(); ++k) {
     DressedGarment& g = result.garments[k];
     g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);
@@ -698,6 +700,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     }
     if (g.from_pattern && result.settled) measure_dressed_panels(g);
     g.warnings = dressed_warnings(g);
+    if (g.padded && result.padding_ran && result.padding_settle.stalled)
+      g.warnings.push_back(g.name + ": the padding stalled and was kept where it stopped, " +
+                           std::to_string(g.padding.below_min) + " vertices below its lower limit of " +
+                           number(1e3 * g.padding.min) + " mm");
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];
     const Gap gap = layer_gap(g.dressed, inner.padded && inner.dressed_outer.rows() > 0 ? inner.dressed_outer : inner.dressed,

@@ -202,6 +202,12 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
     sew_options.panel_moves = std::move(moves.moves);
     panel_parts = std::move(moves.parts);
   }
+  if (options.on_sew) {
+    const std::string name = d.name;
+    const int pairs = static_cast<int>(cut.stitch_pairs.size());
+    options.on_sew(name, pairs, 0.0, sew_options.max_seconds);
+    sew_options.on_step = [&options, name, pairs](double done, double total) { options.on_sew(name, pairs, done, total); };
+  }
   const pattern::SewResult sewn = [&] {
     try {
       return pattern::sew_pattern(p, cut, body, sew_options, body_distance);

@@ -40,6 +40,7 @@ std::string garment_list(const DressResult& r) {
 void add_tables(const DressResult& r, ReportPage& page) {
   std::vector<std::vector<std::string>> rows;
   // First what went wrong, where it cannot be missed.
+  for (const std::string& w : r.warnings) rows.push_back({"outfit", w});
   for (const std::string& w : r.settle.warnings) rows.push_back({"settle", w});
   for (const DressedGarment& g : r.garments)
     for (const std::string& w : g.warnings) rows.push_back({g.name, w});

@@ -71,6 +71,7 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
         return false;
       }
       ++r.steps;
+      if (options.on_step) options.on_step(simulated + sim.time(), options.max_seconds);
       if (std::all_of(sim.sewn().begin(), sim.sewn().end(), [](char c) { return c != 0; })) {
         r.stopped = "closed";
         return true;

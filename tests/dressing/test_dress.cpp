@@ -366,6 +366,7 @@ TEST(Dress, TwoGarmentFilesKeepTheirLayerOrder) {
   ASSERT_EQ(r.garments.size(), 2u);
   EXPECT_TRUE(stage(r, "layers").ran);
   EXPECT_EQ(r.layer_crossings, 0);
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();  // nothing to say of the outfit as a whole
   const InsideTest body(r.body);
   EXPECT_EQ(body.count_deeper(r.garments[0].dressed, 0.002) + body.count_deeper(r.garments[1].dressed, 0.002), 0);
   // Over the jeans (within 5 cm of them, 1 cm or more from their openings' edges), t-shirt

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <memory>
 #include <set>
 
 #include "dresskit/dressing/dress.h"
@@ -86,7 +87,11 @@ std::string per_garment(const std::vector<std::string>& values, std::size_t i, c
 }  // namespace
 
 void show_progress(const std::string& command, DressOptions& options, Progress& progress) {
-  options.on_stage = [command](const DressStage& s) {
+  // Sewing a pattern can take a minute, inside the load stage: a line when it starts, then a bar
+  // (ended by the next line).
+  auto sewing = std::make_shared<std::unique_ptr<Progress>>();
+  options.on_stage = [command, sewing](const DressStage& s) {
+    sewing->reset();
     char line[64];
     std::snprintf(line, sizeof line, "%7.2f s", s.seconds);
     std::cerr << command << ": " << s.name << (s.ran ? "" : " (left out)") << " " << line << "  " << s.reason << "\n";
@@ -95,6 +100,16 @@ void show_progress(const std::string& command, DressOptions& options, Progress& 
     if (!progress.terminal()) return;
     progress.set_total(total);
     progress.update(done);
+  };
+  options.on_sew = [command, sewing](const std::string& garment, int pairs, double done, double total) {
+    if (done == 0.0) {
+      sewing->reset();
+      std::cerr << command << ": sewing " << garment << " (" << pairs << " stitch pairs; a try sews for at most "
+                << total << " s simulated)\n";
+      *sewing = std::make_unique<Progress>("sew", total, "s simulated");
+    } else if (*sewing && (*sewing)->terminal()) {
+      (*sewing)->update(done);
+    }
   };
 }
 
@@ -169,11 +184,9 @@ int DressCommand::run() {
     return static_cast<int>(ExitCode::simulation_failed);
   }
   for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: " << body << ": warning: " << w << "\n";
+  for (const std::string& w : r.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   for (const DressedGarment& g : r.garments)
     for (const std::string& w : g.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
-  if (r.padding_ran && r.padding_settle.stalled)
-    std::cerr << "dress-a-mesh: " << body << ": warning: the padding " << r.padding_settle.stopped_reason
-              << "; kept where it stopped (report.json: padding per garment)\n";
   write_folder(
       dir,
       [&](const fs::path& folder) {

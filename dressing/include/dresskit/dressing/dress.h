@@ -92,6 +92,9 @@ struct DressOptions {
   /// Called when a stage ends, and while settling with the simulated seconds done of at most total.
   std::function<void(const struct DressStage&)> on_stage;
   std::function<void(double done, double total)> on_settle;
+  /// Called when a pattern garment starts sewing (done = 0), then after every sewing step, with its
+  /// name, its stitch pairs and the simulated seconds done of at most total (part of `load`).
+  std::function<void(const std::string& garment, int pairs, double done, double total)> on_sew;
 };
 
 struct DressStage {
@@ -208,7 +211,7 @@ struct DressedGarment {
   SewnPattern pattern;
   /// What the dressed garment got wrong, one sentence each: crossing itself more often than as
   /// authored (a pattern: as sewn), vertices deeper than 2 mm inside the body, a panel's area
-  /// changed by more than kPanelAreaChange. Empty: none of these.
+  /// changed by more than kPanelAreaChange, a padding that stalled. Empty: none of these.
   std::vector<std::string> warnings;
 };
 
@@ -235,6 +238,9 @@ struct DressResult {
   /// within 2 cm of the inner one (a padded one: its outer shell), their count and the 5th percentile and median of their distance
   /// to it, against the thickness asked for [m].
   int layer_crossings = 0;
+  /// What the dressed outfit got wrong as a whole, one sentence each: garments crossing each other.
+  /// (Each garment's own problems are in DressedGarment::warnings.)
+  std::vector<std::string> warnings;
   std::vector<int> layer_gap_vertices;
   std::vector<double> layer_gap_p5, layer_gap_median, layer_gap_asked;
   double seconds = 0.0;  ///< the whole run, wall-clock

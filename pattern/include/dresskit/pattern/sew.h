@@ -12,6 +12,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <memory>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -105,6 +106,9 @@ struct SewOptions {
   /// (dress: docs/pattern.md). Given, it replaces the move by frames (pattern_body); the panels
   /// are then moved out of the body as there (clearance).
   std::vector<Eigen::Matrix4d> panel_moves;
+  /// Called after every sewing step with the simulated seconds so far (both tries: drawing, then
+  /// seam forces) and max_seconds; may be empty.
+  std::function<void(double simulated, double limit)> on_step;
 };
 
 struct SewResult {
