@@ -596,17 +596,22 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       // A garment untangled by holding its parts apart may be pressed between them and the body
       // tighter than its length limits allow: the contacts then raise its strain at every step by
       // more than the adaptive step allows, however short, and the settle stalls. It settles again
-      // from the same placement with four times the rise allowed a step.
+      // from the same placement allowing twice the rise a step, and four times where that stalls
+      // too. The least that gets past the jam is used: the larger steps it allows crumple cloth
+      // pressed between body and cloth (a pattern's hoody carried to the 11-year-old girl: 27
+      // crossings and a panel 19 % larger at four times, 7 crossings and panels within 3 % at twice).
       std::string held;
-      if (result.settle.stalled) {
-        const std::string again = "settling " + result.settle.stopped_reason +
-                                  ", settled again allowing a rise in strain of " +
-                                  number(4.0 * o.max_strain_change) + " a step";
-        held += "; " + again;
-        o.max_strain_change *= 4.0;
+      std::vector<std::string> retries;
+      const double allowed = o.max_strain_change;
+      for (const double factor : {2.0, 4.0}) {
+        if (!result.settle.stalled) break;
+        retries.push_back("settling " + result.settle.stopped_reason + ", settled again allowing a rise in strain of " +
+                          number(factor * allowed) + " a step");
+        held += "; " + retries.back();
+        o.max_strain_change = factor * allowed;
         settle();
-        result.settle.warnings.insert(result.settle.warnings.begin(), again);
       }
+      result.settle.warnings.insert(result.settle.warnings.begin(), retries.begin(), retries.end());
       // Cloth–cloth collisions leave out pairs whose sides both lie in a crossing at a step's
       // start, so that a garment can drape out of the crossings placement left; but where a garment
       // crosses itself as authored (layered details: folded hems, lapels through a jacket), its

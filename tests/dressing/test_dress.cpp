@@ -300,8 +300,12 @@ TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   const auto settle = std::find_if(r.stages.begin(), r.stages.end(), [](const DressStage& s) { return s.name == "settle"; });
   ASSERT_NE(settle, r.stages.end());
   EXPECT_NE(settle->reason.find("settling stalled"), std::string::npos) << settle->reason;
+  // Twice the rise a step first, then, stalled again, four times; both said.
+  EXPECT_NE(settle->reason.find("settled again allowing a rise in strain of 0.1 a step"), std::string::npos)
+      << settle->reason;
   EXPECT_NE(settle->reason.find("settled again allowing a rise in strain of 0.2 a step"), std::string::npos)
       << settle->reason;
+  EXPECT_EQ(r.settle.warnings.size(), 2u);
   EXPECT_LE(g.crossings_placed, g.crossings_authored);
   EXPECT_EQ(count_intersections(g.placed, g.mesh.F), g.crossings_placed);
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);
