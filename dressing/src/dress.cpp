@@ -704,11 +704,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       g.springs_over_limit = static_cast<int>(strain.end() - std::upper_bound(strain.begin(), strain.end(), kOverLimit));
     }
     if (g.from_pattern && result.settled) measure_dressed_panels(g);
-    g.warnings = dressed_warnings(g);
-    if (g.padded && result.padding_ran && result.padding_settle.stalled)
-      g.warnings.push_back(g.name + ": the padding stalled and was kept where it stopped, " +
-                           std::to_string(g.padding.below_min) + " vertices below its lower limit of " +
-                           number(1e3 * g.padding.min) + " mm");
+    g.warnings = dressed_warnings(g, result.padding_ran && result.padding_settle.stalled ? result.padding_settle.stopped_reason : "");
     if (k == 0) continue;
     const DressedGarment& inner = result.garments[k - 1];
     const Gap gap = layer_gap(g.dressed, inner.padded && inner.dressed_outer.rows() > 0 ? inner.dressed_outer : inner.dressed,

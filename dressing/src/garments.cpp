@@ -58,7 +58,7 @@ std::pair<Eigen::MatrixX3d, int> fit_outside(const DressedGarment& g, const Eige
 
 }  // namespace
 
-std::vector<std::string> dressed_warnings(const DressedGarment& g) {
+std::vector<std::string> dressed_warnings(const DressedGarment& g, const std::string& padding_stalled) {
   std::vector<std::string> w;
   if (g.crossings_dressed > g.crossings_authored)
     w.push_back(g.name + " crosses itself " + std::to_string(g.crossings_dressed) + " times (" +
@@ -74,6 +74,12 @@ std::vector<std::string> dressed_warnings(const DressedGarment& g) {
       w.push_back(g.name + ": panel '" + p.panels[k] + "' " + (change > 0.0 ? "grew" : "shrank") + " by " + percent +
                   " % of its flat area");
     }
+  }
+  if (g.padded && !padding_stalled.empty()) {
+    char limit[32];
+    std::snprintf(limit, sizeof limit, "%.3g", 1e3 * g.padding.min);
+    w.push_back(g.name + ": the padding " + padding_stalled + "; kept where it stopped, " +
+                std::to_string(g.padding.below_min) + " vertices below its lower limit of " + limit + " mm");
   }
   return w;
 }

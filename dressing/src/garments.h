@@ -34,8 +34,9 @@ int crossings_between(const std::vector<DressedGarment>& garments, Eigen::Matrix
 
 /// What the dressed garment got wrong (DressedGarment::warnings), from its counts and panel areas:
 /// crossing itself more often than as authored (as sewn), vertices inside the body, a panel's area
-/// changed by more than kPanelAreaChange.
-std::vector<std::string> dressed_warnings(const DressedGarment& g);
+/// changed by more than kPanelAreaChange, and for a padded garment a padding that stalled
+/// (`padding_stalled`: why, as the padding settle's stopped reason; "" when it did not).
+std::vector<std::string> dressed_warnings(const DressedGarment& g, const std::string& padding_stalled = "");
 
 /// Part names of a garment's legs (trouser legs, skirt parts) and of its sleeves.
 bool names_legs(const std::string& part);

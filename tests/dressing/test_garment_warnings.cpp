@@ -55,6 +55,19 @@ TEST(GarmentWarnings, AMeshGarmentIsComparedWithItselfAsAuthored) {
   EXPECT_EQ(w[0], "elegantsuit crosses itself 45 times (43 as authored)");
 }
 
+TEST(GarmentWarnings, AStalledPaddingIsSaidWithWhyAndHowFarShort) {
+  DressedGarment g;
+  g.name = "suit";
+  g.padded = true;
+  g.padding.min = 0.0159;
+  g.padding.below_min = 753;
+  EXPECT_TRUE(dressed_warnings(g).empty());
+  const std::vector<std::string> w = dressed_warnings(g, "stalled: 50 steps in a row");
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0], "suit: the padding stalled: 50 steps in a row; kept where it stopped, 753 vertices below its "
+                  "lower limit of 15.9 mm");
+}
+
 TEST(GarmentWarnings, AnUnsettledPatternHasNoPanelAreasToJudge) {
   DressedGarment g = two_panels(0.0, 0.0);
   g.pattern.panel_area_dressed.clear();
