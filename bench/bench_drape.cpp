@@ -33,7 +33,7 @@ std::vector<std::string> split(const std::string& s, char sep) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  if (argc < 2 || argv[1][0] == '-') {
     std::cerr << "usage: bench_drape OUT.csv [--resolution N] [--duration S] [--cases a,b] [--settings NAME=JSON;...]\n";
     return 64;
   }

@@ -39,7 +39,7 @@ double distance_percent(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b, co
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  if (argc < 2 || argv[1][0] == '-') {
     std::cerr << "usage: bench_dress OUT.csv [--qualities fast,balanced]\n";
     return 64;
   }

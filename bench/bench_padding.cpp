@@ -21,7 +21,7 @@ using namespace dresskit::dressing;
 using namespace dresskit::mesh;
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  if (argc < 2 || argv[1][0] == '-') {
     std::cerr << "usage: bench_padding OUT.csv [--cases a,b]\n";
     return 64;
   }

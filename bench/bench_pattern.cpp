@@ -37,7 +37,7 @@ using namespace dresskit::mesh;
 using namespace dresskit;
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
+  if (argc < 2 || argv[1][0] == '-') {
     std::cerr << "usage: bench_pattern OUT.csv [--edge 0.02] [--patterns gc_shirt_mean,...] "
                  "[--trials 1] [--body gc_mean_all] [--body-units m] [--pattern-body NAME]\n";
     return 64;

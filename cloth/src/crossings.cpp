@@ -46,11 +46,12 @@ int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
   return crossings;
 }
 
-std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F) {
+std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F, const std::vector<int>& group) {
   std::vector<char> in(static_cast<std::size_t>(x.rows()), 0);
   if (F.rows() > 0) {
     const EdgeList edges = triangle_edges(F);
     for_each_crossing(x, F, detail::representatives({}, static_cast<int>(x.rows())), edges, [&](int e, int f) {
+      if (!group.empty() && group[static_cast<std::size_t>(edges.i[e])] == group[static_cast<std::size_t>(F(f, 0))]) return;
       for (int p : {edges.i[e], edges.j[e], F(f, 0), F(f, 1), F(f, 2)}) in[static_cast<std::size_t>(p)] = 1;
     });
   }

@@ -209,7 +209,7 @@ LayerGap layer_gap(const ClothModel& m, const Eigen::MatrixX3d& x) {
 }
 
 LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x,
-                           const std::vector<Collider>& colliders) {
+                           const std::vector<Collider>& colliders, bool highest) {
   const int nv = static_cast<int>(x.rows());
   LayerContacts c;
   c.below_face.assign(nv, -1);
@@ -268,7 +268,7 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x,
       if (m.layer[p] != below + 1) continue;
       const Eigen::Vector3d P = projected.row(p);
       // Of the faces whose projection contains P (a fold of the layer beneath gives several), the
-      // one whose point at P's weights is nearest to p in space.
+      // one whose point at P's weights is nearest to p in space, or the highest over the collider.
       double best = std::numeric_limits<double>::infinity();
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
@@ -289,7 +289,9 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x,
               if (std::min({u, v, w}) < -1e-6) continue;
               const Eigen::Vector3d X =
                   u * x.row(m.faces(f, 0)) + v * x.row(m.faces(f, 1)) + w * x.row(m.faces(f, 2));
-              const double d2 = (X - x.row(p).transpose()).squaredNorm();
+              const double d2 =
+                  highest ? -(u * c.distance[m.faces(f, 0)] + v * c.distance[m.faces(f, 1)] + w * c.distance[m.faces(f, 2)])
+                          : (X - x.row(p).transpose()).squaredNorm();
               if (d2 < best) {
                 best = d2;
                 c.below_face[p] = f;

@@ -535,6 +535,35 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     stage.done(true, report);
   }
 
+  // Layers apart: each garment worn over another moved out over it by the separation, so that the
+  // settle starts with the layers in order (its cloth–cloth collisions keep them so, but cannot
+  // undo a crossing they start with).
+  {
+    Stage stage(result, options, "grading");
+    if (result.garments.size() < 2) {
+      stage.done(false, "one garment: no layers to grade");
+    } else {
+      const int before = crossings_between(result.garments, &DressedGarment::placed);
+      const std::vector<Grading> graded = grade_layers(result.garments, body_distance, separation);
+      std::string report;
+      for (std::size_t k = 0; k < graded.size(); ++k) {
+        if (graded[k].vertices == 0) continue;
+        DressedGarment& g = result.garments[k];
+        g.crossings_placed = count_intersections(g.placed, g.mesh.F);
+        g.inside_placed = surface_fit(g.placed, inside).inside;
+        report += (report.empty() ? "" : "; ") + g.name + " moved out over " + result.garments[k - 1].name + ": " +
+                  std::to_string(graded[k].vertices) + " vertices, by up to " + number(1e3 * graded[k].largest, 3) + " mm";
+      }
+      if (report.empty()) {
+        stage.done(false, "every garment already lies over the one beneath it");
+      } else {
+        const int after = crossings_between(result.garments, &DressedGarment::placed);
+        stage.done(true, report + "; the garments cross each other " + std::to_string(after) + " times (" +
+                             std::to_string(before) + " before)");
+      }
+    }
+  }
+
   // Settle.
   for (DressedGarment& g : result.garments) g.dressed = g.placed;
   double duration = 1.0;

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
+#include <unordered_map>
 #include <utility>
 
+#include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/mesh/arap.h"
@@ -133,6 +136,116 @@ int crossings_between(const std::vector<DressedGarment>& garments, Eigen::Matrix
     append_mesh(all, m, "");
   }
   return std::max(0, count_intersections(all.V, all.F) - own);
+}
+
+std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const std::shared_ptr<const MeshDistance>& body,
+                                  double separation) {
+  // Pushes spread this many rings of neighbours, each ring keeping at least the mean of its
+  // neighbours' pushes: a smooth bulge a few edges wide around a region pushed out.
+  constexpr int kSpread = 8;
+  // Over a layer beneath that is not smooth at the scale of the garment's triangles (collars,
+  // pockets, wrinkles), a vertex just over it can have edges that dip under it: the vertices of
+  // such crossings ask for kStep more gap, up to kRounds times.
+  constexpr int kRounds = 12;
+  constexpr double kStep = 0.002;  // [m]
+  std::vector<Grading> graded(garments.size());
+  if (garments.size() < 2) return graded;
+  const std::vector<Collider> colliders = {Collider::mesh(body)};
+  // The garments stacked in one numbering: positions, faces and each vertex's garment.
+  std::vector<int> first = {0}, garment_of;
+  std::vector<Eigen::Index> faces_end;
+  for (const DressedGarment& g : garments) first.push_back(first.back() + static_cast<int>(g.placed.rows()));
+  Eigen::MatrixX3d x(first.back(), 3);
+  Eigen::MatrixX3i faces(0, 3);
+  for (std::size_t k = 0; k < garments.size(); ++k) {
+    const DressedGarment& g = garments[k];
+    x.middleRows(first[k], g.placed.rows()) = g.placed;
+    garment_of.insert(garment_of.end(), static_cast<std::size_t>(g.placed.rows()), static_cast<int>(k));
+    faces.conservativeResize(faces.rows() + g.mesh.F.rows(), 3);
+    faces.bottomRows(g.mesh.F.rows()) = g.mesh.F.array() + first[k];
+    faces_end.push_back(faces.rows());
+  }
+  for (std::size_t k = 1; k < garments.size(); ++k) {  // inner garments first: their moves carry outwards
+    const int n = first[k + 1] - first[k];
+    const Eigen::MatrixX3i& F = garments[k].mesh.F;
+    // Two layers for match_layers: every garment beneath this one, and this one.
+    ClothModel worn;
+    worn.faces = faces.topRows(faces_end[k]);
+    worn.layer = Eigen::VectorXi::Zero(first[k + 1]);
+    worn.layer.tail(n).setOnes();
+    const std::vector<std::vector<int>> neighbours = vertex_neighbours(F, n);
+    const Eigen::MatrixX3d start = x.middleRows(first[k], n);
+    Eigen::MatrixX3d projected(n, 3);
+    double reach = 0.0;  // the garment's mean edge [m]
+    for (Eigen::Index f = 0; f < F.rows(); ++f)
+      for (int e = 0; e < 3; ++e) reach += (start.row(F(f, e)) - start.row(F(f, (e + 1) % 3))).norm();
+    reach /= std::max<double>(1.0, 3.0 * static_cast<double>(F.rows()));
+    Eigen::VectorXd extra = Eigen::VectorXd::Zero(n), push = Eigen::VectorXd::Zero(n);
+    for (int round = 0; round < kRounds; ++round) {
+      x.middleRows(first[k], n) = start;
+      const LayerContacts c = match_layers(worn, x.topRows(first[k + 1]), colliders, true);
+      for (int v = 0; v < n; ++v) {
+        const int p = first[k] + v;
+        push(v) = 0.0;
+        if (c.below_face[p] < 0) continue;
+        const double needed = c.height_below(p, worn, x, colliders) + separation + extra(v);
+        push(v) = std::max(0.0, needed - c.distance[p]);
+      }
+      for (int spread = 0; spread < kSpread; ++spread) {
+        Eigen::VectorXd next = push;
+        for (int v = 0; v < n; ++v) {
+          const std::vector<int>& around = neighbours[static_cast<std::size_t>(v)];
+          if (around.empty()) continue;
+          double mean = 0.0;
+          for (int u : around) mean += push(u);
+          next(v) = std::max(push(v), mean / static_cast<double>(around.size()));
+        }
+        push = next;
+      }
+      // Every sheet of this garment over one place of the body moves out as far as the lowest:
+      // the largest push within one mean edge of a vertex's projection onto the body, so that a
+      // lapel over a front or a pocket over a side keeps its side of it.
+      {
+        std::unordered_map<std::int64_t, std::vector<int>> grid;
+        auto cell = [&](int v, int dx, int dy, int dz) {
+          const Eigen::RowVector3d q = projected.row(v) / reach;
+          return (static_cast<std::int64_t>(std::floor(q.x()) + dx) & 0x1fffff) << 42 |
+                 (static_cast<std::int64_t>(std::floor(q.y()) + dy) & 0x1fffff) << 21 |
+                 (static_cast<std::int64_t>(std::floor(q.z()) + dz) & 0x1fffff);
+        };
+        for (int v = 0; v < n; ++v) {
+          projected.row(v) = x.row(first[k] + v) - c.distance[first[k] + v] * c.normal.row(first[k] + v);
+          if (push(v) > 0.0) grid[cell(v, 0, 0, 0)].push_back(v);
+        }
+        Eigen::VectorXd widest = push;
+        for (int v = 0; v < n; ++v)
+          for (int dx = -1; dx <= 1; ++dx)
+            for (int dy = -1; dy <= 1; ++dy)
+              for (int dz = -1; dz <= 1; ++dz) {
+                const auto it = grid.find(cell(v, dx, dy, dz));
+                if (it == grid.end()) continue;
+                for (int u : it->second)
+                  if ((projected.row(u) - projected.row(v)).squaredNorm() < reach * reach)
+                    widest(v) = std::max(widest(v), push(u));
+              }
+        push = widest;
+      }
+      for (int v = 0; v < n; ++v) x.row(first[k] + v) += push(v) * c.normal.row(first[k] + v);
+      // Vertices of this garment in crossings with those beneath.
+      int crossing = 0;
+      for (int p : crossing_vertices(x.topRows(first[k + 1]), worn.faces, garment_of)) {
+        if (p < first[k]) continue;
+        extra(p - first[k]) += kStep;
+        ++crossing;
+      }
+      if (crossing == 0) break;
+    }
+    Grading& g = graded[k];
+    for (int v = 0; v < n; ++v)
+      if (push(v) > 0.0) ++g.vertices, g.largest = std::max(g.largest, push(v));
+    garments[k].placed = x.middleRows(first[k], n);
+  }
+  return graded;
 }
 
 /// Where placement made a garment cross itself (bending parts apart and together by their own

@@ -1,6 +1,7 @@
 #pragma once
 // What the dressing pipeline does to one garment (dress.cpp): its rest shape, the regions its
 // placement made cross rebuilt, its kind, and its waistband.
+#include <memory>
 #include <vector>
 
 #include "dresskit/cloth/cloth_model.h"
@@ -31,6 +32,23 @@ void untangle_along_path(std::vector<DressedGarment>& garments, std::size_t k);
 /// Edge–triangle crossings between different garments at their positions `at` (placed or dressed;
 /// dressed: a padded garment's two shells).
 int crossings_between(const std::vector<DressedGarment>& garments, Eigen::MatrixX3d DressedGarment::*at);
+
+/// How grade_layers moved one garment: vertices moved out and the largest move [m].
+struct Grading {
+  int vertices = 0;
+  double largest = 0.0;
+};
+
+/// Each garment worn over others (garments in layer order, inside to outside) moved out where it
+/// lies under those beneath it, at their placed positions: a vertex over them (cloth::match_layers,
+/// the highest face beneath along the body's normal) lower than their height over the body plus
+/// `separation` is moved out along the body's normal to it. The moves spread to the vertex's
+/// neighbours (a bulge over what lies beneath, not a tent), and every sheet of the garment over one
+/// place of the body moves as far as the lowest (a lapel keeps its side of the front). The
+/// vertices of crossings still left with the garments beneath then ask for 2 mm more, up to twelve
+/// rounds. Updates placed positions; returns the moves per garment.
+std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const std::shared_ptr<const cloth::MeshDistance>& body,
+                                  double separation);
 
 /// What the dressed garment got wrong (DressedGarment::warnings), from its counts and panel areas:
 /// crossing itself more often than as authored (as sewn), vertices inside the body, a panel's area

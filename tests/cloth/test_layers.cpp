@@ -184,6 +184,27 @@ TEST(Layers, OrderMeasureIsLocalAndIgnoresParticlesBesideTheLayerBeneath) {
   EXPECT_EQ(layer_order(stacked, x, {}).checked, 0);
 }
 
+// Beneath a particle two sheets of the layer below (a fold): 1 cm and 3 cm over a floor; the
+// particle at 1.5 cm. The nearest sheet is the lower one, the highest the upper one.
+TEST(Layers, MatchLayersFindsTheNearestOrTheHighestSheetBeneath) {
+  const Fabric fabric = fabric_by_name("gray-interlock");
+  auto sheet = [&](double height) { return build_cloth(make_grid({0.2, 0.2}, {5, 5}, {0, height, 0}, {0, 1, 0}), fabric); };
+  ClothModel below = stack_layers({sheet(0.01), sheet(0.03)}, 0.0);
+  below.layer.setZero();  // one layer folded over itself
+  ClothModel top = sheet(0.015);
+  const ClothModel stacked = stack_layers({below, top}, 0.0);
+  const std::vector<Collider> floor = {Collider::plane({0, 0, 0}, {0, 1, 0})};
+  const int p = static_cast<int>(stacked.rest_positions.rows()) - 13;  // an inner particle of the top sheet
+  ASSERT_EQ(stacked.layer[p], 1);
+  const LayerContacts nearest = match_layers(stacked, stacked.rest_positions, floor);
+  const LayerContacts highest = match_layers(stacked, stacked.rest_positions, floor, true);
+  ASSERT_GE(nearest.below_face[p], 0);
+  ASSERT_GE(highest.below_face[p], 0);
+  EXPECT_NEAR(nearest.height_below(p, stacked, stacked.rest_positions, floor), 0.01, 1e-9);
+  EXPECT_NEAR(highest.height_below(p, stacked, stacked.rest_positions, floor), 0.03, 1e-9);
+  EXPECT_NEAR(highest.distance[p], 0.015, 1e-9);
+}
+
 TEST(Layers, StackedGarmentsKeepTheirOrderOnASphere) {
   // Three single layers dropped together: the layer-order guard keeps them stacked.
   std::vector<ClothModel> garments = {grid_cloth(16, 0.40), grid_cloth(16, 0.42),

@@ -119,6 +119,20 @@ TEST(Intersections, CountsEdgesThroughTrianglesOnly) {
   EXPECT_EQ(count_intersections(x, F, {0, 1, 2, 0, 4, 5}), 1);
 }
 
+// Crossing vertices, of all crossings or only of those between groups: a triangle of group 0
+// pierced by one of group 1, and a third triangle of group 0 that pierces the first.
+TEST(Intersections, CrossingVerticesBetweenGroupsLeaveOutEachGroupsOwn) {
+  Eigen::MatrixX3d x(9, 3);
+  Eigen::MatrixX3i F(3, 3);
+  F << 0, 1, 2, 3, 4, 5, 6, 7, 8;
+  x << 0, 0, 0, 1, 0, 0, 0, 1, 0,  //
+      0.2, 0.2, -1, 0.2, 0.2, 1, 0.5, 2, 0,  //
+      0.6, 0.1, -1, 0.6, 0.1, 1, 0.9, -2, 0;
+  EXPECT_EQ(crossing_vertices(x, F), (std::vector<int>{0, 1, 2, 3, 4, 5, 6, 7, 8}));
+  EXPECT_EQ(crossing_vertices(x, F, {0, 0, 0, 1, 1, 1, 0, 0, 0}), (std::vector<int>{0, 1, 2, 3, 4, 5}));
+  EXPECT_TRUE(crossing_vertices(x, F, {0, 0, 0, 0, 0, 0, 0, 0, 0}).empty());
+}
+
 // The tree traversal counts exactly what a test of every edge against every triangle counts, on a
 // crumpled sheet with hundreds of crossings (an edge sharing a particle with the triangle
 // excluded).

@@ -410,6 +410,54 @@ TEST(Dress, TwoGarmentFilesKeepTheirLayerOrder) {
   EXPECT_NE(stage(inferred, "layers").reason.find("inferred"), std::string::npos);
 }
 
+// MakeHuman's casualsuit and elegantsuit are both made for the woman: worn one over the other as
+// authored, they cross each other 2,981 times. The outer one is moved out over the inner one before
+// settling: no crossing between them, the inner one where it was, the outer one moved out only.
+TEST(Dress, ASuitWornOverAnotherIsMovedOutOverIt) {
+  DRESSKIT_REQUIRE_DATA();
+  const std::string labels = test::data_dir() + "/labels/";
+  MeshFile body = in_units(body_path("mh_woman_young_average"), "dm");
+  body.labels = labels + "mh_body_part_labels.json";
+  std::vector<GarmentFile> suits;
+  for (const char* name : {"female_casualsuit01", "female_elegantsuit01"}) {
+    suits.push_back({in_units(outfit_path(name), "dm"), ""});
+    suits.back().file.labels = labels + "mh_clothes_part_labels.json";
+  }
+  DressOptions o;
+  o.settle = false;
+  const DressResult r = dress(body, suits, o);
+  ASSERT_EQ(r.garments.size(), 2u);
+  EXPECT_TRUE(stage(r, "grading").ran);
+  const DressedGarment &inner = r.garments[0], &outer = r.garments[1];
+  EXPECT_EQ((inner.placed - inner.mesh.V).cwiseAbs().maxCoeff(), 0.0);
+  // Crossings between the two, counted here: all of them less each one's own.
+  auto between = [&](const Eigen::MatrixX3d& outer_at) {
+    const Eigen::MatrixX3d x = (Eigen::MatrixX3d(inner.mesh.num_vertices() + outer.mesh.num_vertices(), 3) << inner.mesh.V, outer_at).finished();
+    const Eigen::MatrixX3i F =
+        (Eigen::MatrixX3i(inner.mesh.num_faces() + outer.mesh.num_faces(), 3) << inner.mesh.F, outer.mesh.F.array() + inner.mesh.num_vertices()).finished();
+    return count_intersections(x, F) - count_intersections(inner.mesh.V, inner.mesh.F) - count_intersections(outer_at, outer.mesh.F);
+  };
+  EXPECT_GT(between(outer.mesh.V), 2000);
+  EXPECT_EQ(between(outer.placed), 0);
+  EXPECT_EQ(r.layer_crossings, 0);
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+  // Out only, by at most a few centimetres, and the outer suit's own layered details (43 crossings
+  // as authored) mostly keep their sides.
+  const InsideTest inside(r.body);
+  int moved = 0;
+  double farthest = 0.0;
+  for (Eigen::Index v = 0; v < outer.placed.rows(); ++v) {
+    const double out = inside.signed_distance(outer.placed.row(v).transpose()) - inside.signed_distance(outer.mesh.V.row(v).transpose());
+    EXPECT_GT(out, -0.001) << "vertex " << v;  // along the body's normal from its distance field, not the exact one
+    farthest = std::max(farthest, (outer.placed.row(v) - outer.mesh.V.row(v)).norm());
+    moved += out > 1e-6;
+  }
+  EXPECT_GT(moved, 1000);
+  EXPECT_LT(farthest, 0.04);
+  EXPECT_EQ(outer.crossings_authored, 43);
+  EXPECT_LE(outer.crossings_placed, 80);
+}
+
 // A garment on the body it was made for is not placed; label files replace segmentation.
 TEST(Dress, StagesLeftOutWhenTheSceneDoesNotNeedThem) {
   DRESSKIT_REQUIRE_DATA();

@@ -39,7 +39,7 @@ TEST(DressCli, WritesTheDressedOutfitAndAReportOfEveryStage) {
     EXPECT_GE(s["seconds"].get<double>(), 0.0);
   }
   EXPECT_EQ(names, (std::vector<std::string>{"load", "clean", "units", "segmentation", "layers", "placement",
-                                             "thickness", "settle", "padding", "write"}));
+                                             "thickness", "grading", "settle", "padding", "write"}));
   const auto& g = report["garments"][0];
   EXPECT_EQ(g["vertices_inside_body_2mm"]["dressed"], 0);
   EXPECT_LE(g["crossings"]["dressed"].get<int>(), g["crossings"]["authored"].get<int>());

@@ -60,8 +60,10 @@ struct LayerContacts {
   double height_below(int p, const ClothModel& model, const Eigen::MatrixX3d& x,
                       const std::vector<Collider>& colliders) const;
 };
+/// With `highest`, of several faces beneath p the one highest over the collider at p's
+/// projection (the outermost sheet where the layer beneath folds or overlaps itself).
 LayerContacts match_layers(const ClothModel& model, const Eigen::MatrixX3d& x,
-                           const std::vector<Collider>& colliders);
+                           const std::vector<Collider>& colliders, bool highest = false);
 
 struct LayerOrder {
   int checked = 0;     ///< particles of layers ≥ 1 lying over or under the layer beneath, near it

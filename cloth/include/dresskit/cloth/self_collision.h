@@ -136,7 +136,9 @@ class SelfCollision {
 int count_intersections(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
                         const std::vector<int>& joined = {});
 /// The vertices of those crossings (both ends of each crossing edge and the corners of the
-/// triangle it crosses), sorted, each once.
-std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F);
+/// triangle it crosses), sorted, each once. With `group` (one entry per vertex: a garment, a layer),
+/// only the crossings of an edge and a triangle of different groups.
+std::vector<int> crossing_vertices(const Eigen::MatrixX3d& x, const Eigen::MatrixX3i& F,
+                                   const std::vector<int>& group = {});
 
 }  // namespace dresskit::cloth

@@ -1,7 +1,7 @@
 #pragma once
 // The dressing pipeline, the product's main job: a body and garments from files to the garments
 // settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
-// how long: load → clean → units → segmentation → layers → placement → thickness → settle → padding.
+// how long: load → clean → units → segmentation → layers → placement → thickness → grading → settle → padding.
 //
 //   const dresskit::dressing::MeshFile body = dresskit::dressing::MeshFile::file("body.obj");
 //   const dresskit::dressing::GarmentFile shirt{dresskit::dressing::MeshFile::file("shirt.obj"), "gray-interlock"};
@@ -98,7 +98,7 @@ struct DressOptions {
 };
 
 struct DressStage {
-  std::string name;      ///< load, clean, units, segmentation, layers, placement, thickness, settle, padding
+  std::string name;      ///< load, clean, units, segmentation, layers, placement, thickness, grading, settle, padding
   bool ran = false;
   double seconds = 0.0;  ///< wall-clock
   std::string reason;    ///< what it did, or why it was left out
