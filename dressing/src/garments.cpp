@@ -11,6 +11,7 @@
 #include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/self_collision.h"
+#include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/mesh/arap.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/topology.h"
@@ -140,13 +141,13 @@ int crossings_between(const std::vector<DressedGarment>& garments, Eigen::Matrix
 
 std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const std::shared_ptr<const MeshDistance>& body,
                                   double separation) {
-  // Pushes spread this many rings of neighbours, each ring keeping at least the mean of its
-  // neighbours' pushes: a smooth bulge a few edges wide around a region pushed out.
+  // Moves spread this many rings of neighbours: a smooth bulge a few edges wide around a region
+  // moved out.
   constexpr int kSpread = 8;
   // Over a layer beneath that is not smooth at the scale of the garment's triangles (collars,
   // pockets, wrinkles), a vertex just over it can have edges that dip under it: the vertices of
-  // such crossings ask for kStep more gap, up to kRounds times.
-  constexpr int kRounds = 12;
+  // such crossings move kStep farther out, up to kRounds times.
+  constexpr int kRounds = 30;
   constexpr double kStep = 0.002;  // [m]
   std::vector<Grading> graded(garments.size());
   if (garments.size() < 2) return graded;
@@ -181,27 +182,39 @@ std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const s
       for (int e = 0; e < 3; ++e) reach += (start.row(F(f, e)) - start.row(F(f, (e + 1) % 3))).norm();
     reach /= std::max<double>(1.0, 3.0 * static_cast<double>(F.rows()));
     Eigen::VectorXd extra = Eigen::VectorXd::Zero(n), push = Eigen::VectorXd::Zero(n);
+    // Where the body's normal does not lead out of the garments beneath (an armpit, the crotch), a
+    // crossing's vertices move along the normal of the nearest face beneath instead, turned away
+    // from the body.
+    Eigen::MatrixXd away = Eigen::MatrixXd::Zero(n, 3);
+    // Moves (one per row) spread over the mesh: kSpread times, each vertex takes its neighbours'
+    // mean move where that is longer than its own.
+    auto spread = [&](auto& moves) {
+      for (int round = 0; round < kSpread; ++round) {
+        Eigen::MatrixXd next = moves;
+        for (int v = 0; v < n; ++v) {
+          const std::vector<int>& around = neighbours[static_cast<std::size_t>(v)];
+          if (around.empty()) continue;
+          Eigen::RowVectorXd mean = Eigen::RowVectorXd::Zero(moves.cols());
+          for (int u : around) mean += moves.row(u);
+          mean /= static_cast<double>(around.size());
+          if (mean.squaredNorm() > moves.row(v).squaredNorm()) next.row(v) = mean;
+        }
+        moves = next;
+      }
+    };
+    const TriangleBvh beneath(x.topRows(first[k]), faces.topRows(faces_end[k - 1]));
     for (int round = 0; round < kRounds; ++round) {
       x.middleRows(first[k], n) = start;
       const LayerContacts c = match_layers(worn, x.topRows(first[k + 1]), colliders, true);
       for (int v = 0; v < n; ++v) {
         const int p = first[k] + v;
-        push(v) = 0.0;
-        if (c.below_face[p] < 0) continue;
-        const double needed = c.height_below(p, worn, x, colliders) + separation + extra(v);
-        push(v) = std::max(0.0, needed - c.distance[p]);
+        // Beside the garments beneath (past their hems), only the crossings' extra moves it.
+        const double needed = c.below_face[p] < 0 ? c.distance[p] : c.height_below(p, worn, x, colliders) + separation;
+        push(v) = std::max(0.0, needed + extra(v) - c.distance[p]);
       }
-      for (int spread = 0; spread < kSpread; ++spread) {
-        Eigen::VectorXd next = push;
-        for (int v = 0; v < n; ++v) {
-          const std::vector<int>& around = neighbours[static_cast<std::size_t>(v)];
-          if (around.empty()) continue;
-          double mean = 0.0;
-          for (int u : around) mean += push(u);
-          next(v) = std::max(push(v), mean / static_cast<double>(around.size()));
-        }
-        push = next;
-      }
+      spread(push);
+      Eigen::MatrixXd moved_away = away;
+      spread(moved_away);
       // Every sheet of this garment over one place of the body moves out as far as the lowest:
       // the largest push within one mean edge of a vertex's projection onto the body, so that a
       // lapel over a front or a pocket over a side keeps its side of it.
@@ -230,13 +243,24 @@ std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const s
               }
         push = widest;
       }
-      for (int v = 0; v < n; ++v) x.row(first[k] + v) += push(v) * c.normal.row(first[k] + v);
+      for (int v = 0; v < n; ++v) x.row(first[k] + v) += push(v) * c.normal.row(first[k] + v) + moved_away.row(v);
       // Vertices of this garment in crossings with those beneath.
       int crossing = 0;
       for (int p : crossing_vertices(x.topRows(first[k + 1]), worn.faces, garment_of)) {
         if (p < first[k]) continue;
-        extra(p - first[k]) += kStep;
+        const int v = p - first[k];
         ++crossing;
+        Eigen::Vector3d q, unused;
+        double d2 = 0.0;
+        const int t = beneath.closest(x.row(p).transpose(), &q, &d2);
+        if (t < 0) continue;
+        const Eigen::Vector3i f = faces.row(t).transpose();
+        Eigen::Vector3d out = (x.row(f[1]) - x.row(f[0])).cross(x.row(f[2]) - x.row(f[0])).transpose().normalized();
+        Eigen::Vector3d body_normal;
+        body->distance(q, &body_normal);
+        if (out.dot(body_normal) < 0.0) out = -out;
+        if (out.dot(c.normal.row(p)) > 0.7) extra(v) += kStep;
+        else away.row(v) += kStep * out.transpose();
       }
       if (crossing == 0) break;
     }

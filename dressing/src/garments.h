@@ -45,8 +45,10 @@ struct Grading {
 /// `separation` is moved out along the body's normal to it. The moves spread to the vertex's
 /// neighbours (a bulge over what lies beneath, not a tent), and every sheet of the garment over one
 /// place of the body moves as far as the lowest (a lapel keeps its side of the front). The
-/// vertices of crossings still left with the garments beneath then ask for 2 mm more, up to twelve
-/// rounds. Updates placed positions; returns the moves per garment.
+/// vertices of crossings still left with the garments beneath then move 2 mm farther out, along the
+/// body's normal or, where that does not lead out of the garments beneath (an armpit, the crotch),
+/// along the nearest face beneath, up to thirty rounds. Updates placed positions; returns the
+/// moves per garment.
 std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const std::shared_ptr<const cloth::MeshDistance>& body,
                                   double separation);
 
