@@ -550,9 +550,21 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         if (graded[k].vertices == 0) continue;
         DressedGarment& g = result.garments[k];
         g.crossings_placed = count_intersections(g.placed, g.mesh.F);
-        g.inside_placed = surface_fit(g.placed, inside).inside;
         report += (report.empty() ? "" : "; ") + g.name + " moved out over " + result.garments[k - 1].name + ": " +
                   std::to_string(graded[k].vertices) + " vertices, by up to " + number(1e3 * graded[k].largest, 3) + " mm";
+        // Moved out at an armpit or the crotch, where the body's normals of two parts face each
+        // other, a placed garment's sleeve and side (or two legs) cross: it is moved onto its graded
+        // positions from an uncrossed shape, its parts held apart on the way (as after placement).
+        // A garment worn as authored settles its few new crossings out better from where grading
+        // left it (the elegantsuit over the casualsuit: 7–11 crossings settled against 22–39, in
+        // half the time).
+        if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
+          const int graded_crossings = g.crossings_placed;
+          untangle_along_path(result.garments, k);
+          report += ", crossing itself " + std::to_string(graded_crossings) + " times, " + std::to_string(g.crossings_placed) +
+                    " after untangling (" + std::to_string(g.crossings_authored) + " as authored)";
+        }
+        g.inside_placed = surface_fit(g.placed, inside).inside;
       }
       if (report.empty()) {
         stage.done(false, "every garment already lies over the one beneath it");
