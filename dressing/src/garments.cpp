@@ -218,7 +218,7 @@ std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const s
       // Every sheet of this garment over one place of the body moves out as far as the lowest:
       // the largest push within one mean edge of a vertex's projection onto the body, so that a
       // lapel over a front or a pocket over a side keeps its side of it.
-      {
+      if (reach > 0.0) {
         std::unordered_map<std::int64_t, std::vector<int>> grid;
         auto cell = [&](int v, int dx, int dy, int dz) {
           const Eigen::RowVector3d q = projected.row(v) / reach;
@@ -250,7 +250,7 @@ std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const s
         if (p < first[k]) continue;
         const int v = p - first[k];
         ++crossing;
-        Eigen::Vector3d q, unused;
+        Eigen::Vector3d q;
         double d2 = 0.0;
         const int t = beneath.closest(x.row(p).transpose(), &q, &d2);
         if (t < 0) continue;
@@ -265,8 +265,10 @@ std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const s
       if (crossing == 0) break;
     }
     Grading& g = graded[k];
-    for (int v = 0; v < n; ++v)
-      if (push(v) > 0.0) ++g.vertices, g.largest = std::max(g.largest, push(v));
+    for (int v = 0; v < n; ++v) {
+      const double moved = (x.row(first[k] + v) - start.row(v)).norm();
+      if (moved > 0.0) ++g.vertices, g.largest = std::max(g.largest, moved);
+    }
     garments[k].placed = x.middleRows(first[k], n);
   }
   return graded;
