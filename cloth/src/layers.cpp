@@ -247,12 +247,7 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x,
                    (projected.row(m.faces(f, k)) - projected.row(m.faces(f, (k + 1) % 3))).norm());
   }
   if (cell_size <= 0.0) return c;
-  auto cell = [cell_size](const Eigen::Vector3d& p) {
-    const Eigen::Vector3i q = (p / cell_size).array().floor().cast<int>();
-    return (static_cast<std::int64_t>(q.x() & 0x1fffff) << 42) |
-           (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) |
-           static_cast<std::int64_t>(q.z() & 0x1fffff);
-  };
+  auto cell = [cell_size](const Eigen::Vector3d& p) { return grid_cell_key(p, cell_size); };
   for (int below = 0; below + 1 < layers; ++below) {
     // Each face of the layer beneath in the cell of its projected centroid; a point inside a face
     // is within one longest edge of its centroid, so the 27 cells around the point hold it.

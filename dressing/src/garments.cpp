@@ -8,6 +8,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "dresskit/cloth/geometry.h"
 #include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/self_collision.h"
@@ -221,10 +222,8 @@ std::vector<Grading> grade_layers(std::vector<DressedGarment>& garments, const s
       if (reach > 0.0) {
         std::unordered_map<std::int64_t, std::vector<int>> grid;
         auto cell = [&](int v, int dx, int dy, int dz) {
-          const Eigen::RowVector3d q = projected.row(v) / reach;
-          return (static_cast<std::int64_t>(std::floor(q.x()) + dx) & 0x1fffff) << 42 |
-                 (static_cast<std::int64_t>(std::floor(q.y()) + dy) & 0x1fffff) << 21 |
-                 (static_cast<std::int64_t>(std::floor(q.z()) + dz) & 0x1fffff);
+          const Eigen::Vector3i q = (projected.row(v).transpose() / reach).array().floor().cast<int>();
+          return grid_cell_key(Eigen::Vector3i(q + Eigen::Vector3i(dx, dy, dz)));
         };
         for (int v = 0; v < n; ++v) {
           projected.row(v) = x.row(first[k] + v) - c.distance[first[k] + v] * c.normal.row(first[k] + v);

@@ -1,7 +1,9 @@
 #pragma once
 // Pure geometric kernels for collisions: closest points on triangles and segments, and the exact
-// segment–triangle crossing test behind the intersection counts. No state, no allocation.
+// segment–triangle crossing test behind the intersection counts, and sparse-grid cell keys. No
+// state, no allocation.
 #include <Eigen/Core>
+#include <cstdint>
 
 namespace dresskit::cloth {
 
@@ -21,6 +23,16 @@ double closest_points_of_segments(const Eigen::Vector3d& p0, const Eigen::Vector
 bool segment_crosses_triangle(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const Eigen::Vector3d& a,
                               const Eigen::Vector3d& b, const Eigen::Vector3d& c);
 
+
+/// A hash key for the cell q of a sparse uniform grid, 21 bits per axis (cells 2²¹ apart share one);
+/// the cell of a point p is (p / cell size) floored.
+inline std::int64_t grid_cell_key(const Eigen::Vector3i& q) {
+  return (static_cast<std::int64_t>(q.x() & 0x1fffff) << 42) | (static_cast<std::int64_t>(q.y() & 0x1fffff) << 21) |
+         static_cast<std::int64_t>(q.z() & 0x1fffff);
+}
+inline std::int64_t grid_cell_key(const Eigen::Vector3d& p, double cell_size) {
+  return grid_cell_key(Eigen::Vector3i((p / cell_size).array().floor().cast<int>()));
+}
 
 /// The first contact of two primitives moving linearly from their start (…0) to their end (…1)
 /// positions over t ∈ [0, 1] (continuous collision detection).
