@@ -46,6 +46,7 @@ void append_seams(SeamSet& to, const SeamSet& from, int offset) {
     to.b1.push_back(from.b1[k] + offset);
     to.t.push_back(from.t[k]);
     to.stiffness.push_back(from.stiffness[k]);
+    to.max_force.push_back(from.max_force[k]);
   }
 }
 

@@ -6,6 +6,7 @@
 
 #include "cloth/bare_options.h"
 #include "dresskit/cloth/layers.h"
+#include "dresskit/cloth/seams.h"
 #include "dresskit/cloth/scene.h"
 #include "dresskit/cloth/simulator.h"
 #include "dresskit/mesh/errors.h"
@@ -106,6 +107,26 @@ TEST(Layers, StackingOffsetsIndicesLayersAndOffsets) {
   EXPECT_EQ(m.springs.limited.front(), a.springs.size() + b.springs.limited.front());
   EXPECT_EQ(m.faces.minCoeff(), 0);
   EXPECT_EQ(m.faces.maxCoeff(), 33);
+}
+
+// A garment's stitches (a sewn pattern's pairs left unwelded) stack with it: every field, indices
+// moved by the particles beneath.
+TEST(Layers, StackingKeepsEveryFieldOfTheStitches) {
+  const ClothModel a = grid_cloth(4, 0.5);
+  ClothModel b = grid_cloth(3, 0.6);
+  add_seam_pairs(b.seams, {{0, 8}, {2, 6}}, 9, {100.0, 0.0});
+  cap_stitches_by_acceleration(b.seams, 0, b.mass, 40.0);
+  const ClothModel m = stack_layers({a, b}, 0.003);
+  ASSERT_EQ(m.seams.size(), 2);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(m.seams.a[k], b.seams.a[k] + 16);
+    EXPECT_EQ(m.seams.b0[k], b.seams.b0[k] + 16);
+    EXPECT_EQ(m.seams.b1[k], b.seams.b1[k] + 16);
+    EXPECT_EQ(m.seams.t[k], b.seams.t[k]);
+    EXPECT_EQ(m.seams.stiffness[k], b.seams.stiffness[k]);
+  }
+  ASSERT_EQ(m.seams.max_force.size(), 2u);
+  EXPECT_EQ(m.seams.max_force, b.seams.max_force);
 }
 
 TEST(Layers, GapStaysInsideTheLimitsAtEveryStepOnASphere) {
