@@ -183,7 +183,7 @@ int DressCommand::run() {
               << write_failure_page(dir, r, "dress", inputs) << ")\n";
     return static_cast<int>(ExitCode::simulation_failed);
   }
-  for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: " << body << ": warning: " << w << "\n";
+  for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   for (const std::string& w : r.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   for (const DressedGarment& g : r.garments)
     for (const std::string& w : g.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
