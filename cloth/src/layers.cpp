@@ -283,11 +283,10 @@ LayerContacts match_layers(const ClothModel& m, const Eigen::MatrixX3d& x,
               const double v = (d11 * d20 - d01 * d21) / denom, w = (d00 * d21 - d01 * d20) / denom,
                            u = 1.0 - v - w;
               if (std::min({u, v, w}) < -1e-6) continue;
-              const Eigen::Vector3d X =
-                  u * x.row(m.faces(f, 0)) + v * x.row(m.faces(f, 1)) + w * x.row(m.faces(f, 2));
               const double d2 =
                   highest ? -(u * c.distance[m.faces(f, 0)] + v * c.distance[m.faces(f, 1)] + w * c.distance[m.faces(f, 2)])
-                          : (X - x.row(p).transpose()).squaredNorm();
+                          : (u * x.row(m.faces(f, 0)) + v * x.row(m.faces(f, 1)) + w * x.row(m.faces(f, 2)) - x.row(p))
+                                .squaredNorm();
               if (d2 < best) {
                 best = d2;
                 c.below_face[p] = f;
