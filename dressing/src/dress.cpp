@@ -11,9 +11,11 @@
 #include <memory>
 #include <numeric>
 #include <optional>
+#include <unordered_map>
 
 #include "dresskit/alignment/part_labels.h"
 #include "dresskit/cloth/fabric.h"
+#include "dresskit/cloth/geometry.h"
 #include "dresskit/cloth/layers.h"
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/self_collision.h"
@@ -155,6 +157,45 @@ SurfaceFit surface_fit(const Eigen::MatrixX3d& V, const InsideTest& body) {
   return fit;
 }
 
+/// A garment's height over the body: its vertices' mean distance to the body in each cell of
+/// `cell` [m] that their nearest body points fall in.
+std::unordered_map<std::int64_t, double> height_over_body(const Eigen::MatrixX3d& V, const MeshDistance& body,
+                                                          double cell) {
+  std::unordered_map<std::int64_t, std::pair<double, int>> sum;
+  for (Eigen::Index i = 0; i < V.rows(); ++i) {
+    Eigen::Vector3d outward;
+    const Eigen::Vector3d p = V.row(i).transpose();
+    const double d = body.distance(p, &outward);
+    auto& s = sum[grid_cell_key(p - d * outward, cell)];
+    s.first += d;
+    ++s.second;
+  }
+  std::unordered_map<std::int64_t, double> height;
+  for (const auto& [key, s] : sum) height[key] = s.first / s.second;
+  return height;
+}
+
+/// Which of two garments lies outside the other where both cover the body: +1 when `a` lies
+/// farther from it in more of the cells both cover, −1 when `b` does, 0 when they share no cell
+/// or tie.
+int lies_outside(const std::unordered_map<std::int64_t, double>& a, const std::unordered_map<std::int64_t, double>& b) {
+  int votes = 0;
+  for (const auto& [key, h] : a) {
+    const auto it = b.find(key);
+    if (it != b.end() && h != it->second) votes += h > it->second ? 1 : -1;
+  }
+  return (votes > 0) - (votes < 0);
+}
+
+/// A garment that already lies on the body: few vertices inside it, near its surface on average.
+bool on_body(const SurfaceFit& fit, Eigen::Index vertices, double body_height, const DressOptions& options) {
+  return fit.inside <= options.fit_inside * static_cast<double>(vertices) &&
+         fit.mean_distance <= options.fit_distance * body_height;
+}
+
+/// The body cells [m] in which layers inferred for garments on the body compare their heights.
+constexpr double kLayerCell = 0.02;
+
 /// The simulator's options for a quality; the run's duration.
 SimulationOptions simulation_options(DressQuality q, double& duration) {
   SimulationOptions o;
@@ -294,9 +335,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     const int files = !body_file.mesh + static_cast<int>(std::count_if(garment_files.begin(), garment_files.end(),
                                                                          [](const GarmentFile& g) { return !g.file.mesh; }));
     const int meshes = 1 + static_cast<int>(garment_files.size());
-    stage.done(files > 0, files == meshes ? std::to_string(meshes) + " meshes"
+    stage.done(files > 0, files == meshes ? counted(meshes, "mesh", "meshes")
                           : files == 0    ? "every mesh given in memory"
-                                          : std::to_string(files) + " of " + std::to_string(meshes) + " meshes from files");
+                                          : std::to_string(files) + " of " + counted(meshes, "mesh", "meshes") + " from files");
   }
 
   // Clean: only the meshes with defects the later stages cannot take.
@@ -390,22 +431,41 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                                                           " meshes cut into parts (the others have part labels)");
   }
 
+  const InsideTest inside(result.body);
+  // The body's distance, built once (sewing patterns built it at load unless the body changed since).
+  if (!body_distance || !same_mesh(body_distance->mesh(), result.body))
+    body_distance = std::make_shared<const MeshDistance>(result.body);
+
   // Layers, inside to outside: as given, or inferred from the garments' kinds (bottoms under tops;
-  // of one kind, the larger outside). Before placement, which pushes outer pieces out of inner ones.
+  // of one kind, the one lying farther out where both already lie on the body, else the larger
+  // outside). Before placement, which pushes outer pieces out of inner ones.
   {
     Stage stage(result, options, "layers");
     if (options.infer_layers && result.garments.size() > 1) {
-      std::vector<std::size_t> order(result.garments.size());
-      std::iota(order.begin(), order.end(), 0);
-      std::vector<int> kind(order.size());
-      std::vector<double> area(order.size());
-      for (std::size_t k = 0; k < order.size(); ++k) {
-        kind[k] = is_top(result.garments[k]) ? 1 : 0;
-        area[k] = analyse_topology(result.garments[k].mesh).area;
+      const std::size_t n = result.garments.size();
+      std::vector<int> kind(n);
+      std::vector<double> area(n);
+      std::vector<std::unordered_map<std::int64_t, double>> height(n);  // empty: not on the body
+      for (std::size_t k = 0; k < n; ++k) {
+        const DressedGarment& g = result.garments[k];
+        kind[k] = is_top(g) ? 1 : 0;
+        area[k] = analyse_topology(g.mesh).area;
+        if (on_body(surface_fit(g.mesh.V, inside), g.mesh.num_vertices(), body_height, options))
+          height[k] = height_over_body(g.mesh.V, *body_distance, kLayerCell);
       }
-      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        return kind[a] != kind[b] ? kind[a] < kind[b] : area[a] < area[b];
-      });
+      const auto outside = [&](std::size_t a, std::size_t b) {
+        if (kind[a] != kind[b]) return kind[a] > kind[b];
+        const int over = lies_outside(height[a], height[b]);
+        return over != 0 ? over > 0 : area[a] > area[b];
+      };
+      // Insertion: a garment goes after every garment it lies outside (the relation need not be
+      // transitive for three garments on the body, so no sort that assumes it).
+      std::vector<std::size_t> order;
+      for (std::size_t k = 0; k < n; ++k) {
+        auto at = order.end();
+        while (at != order.begin() && outside(*std::prev(at), k)) --at;
+        order.insert(at, k);
+      }
       std::vector<DressedGarment> garments;
       std::vector<Fabric> ordered_fabrics;
       for (std::size_t k : order) {
@@ -421,17 +481,14 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       order += (order.empty() ? "" : " < ") + g.name + (options.infer_layers ? (is_top(g) ? " (top)" : " (bottom)") : "");
     stage.done(result.garments.size() > 1,
                result.garments.size() < 2 ? "one garment: no layers to order"
-               : options.infer_layers     ? "inside to outside, inferred from the garments' kinds: " + order
+               : options.infer_layers     ? "inside to outside, inferred from the garments' kinds (of one kind: the one lying farther out "
+                                                            "where both lie on the body, else the larger): " + order
                                           : "inside to outside as given: " + order);
   }
 
   // Placement, unless the garment already sits on this body. Garments to place are placed together,
   // as one outfit whose pieces are worn in the order given, so that their parts share one global
   // fit and outer pieces are pushed out of inner ones.
-  const InsideTest inside(result.body);
-  // The body's distance, built once (sewing patterns built it at load unless the body changed since).
-  if (!body_distance || !same_mesh(body_distance->mesh(), result.body))
-    body_distance = std::make_shared<const MeshDistance>(result.body);
   {
     Stage stage(result, options, "placement");
     std::string report, names;
@@ -444,9 +501,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       g.crossings_authored = count_intersections(g.mesh.V, g.mesh.F);
       const SurfaceFit before = surface_fit(g.mesh.V, inside);
       const std::string as_given = " (mean distance " + number(100.0 * before.mean_distance / body_height, 2) +
-                                   " % of its height, " + std::to_string(before.inside) + " vertices inside)";
-      if (before.inside <= options.fit_inside * g.mesh.num_vertices() &&
-          before.mean_distance <= options.fit_distance * body_height) {
+                                   " % of its height, " + counted(before.inside, "vertex", "vertices") + " inside)";
+      if (on_body(before, g.mesh.num_vertices(), body_height, options)) {
         g.placed = g.mesh.V;
         report += (report.empty() ? "" : "; ") + g.name + " already on the body" + as_given;
         continue;
@@ -494,7 +550,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
         untangle(result.garments, k, *body_distance, options.placement.clearance);
         untangle_along_path(result.garments, k);
-        report += "; " + g.name + ": crossing itself " + std::to_string(g.crossings_fitted) + " times as fitted, " +
+        report += "; " + g.name + ": crossing itself " + counted(g.crossings_fitted, "time", "times") + " as fitted, " +
                   std::to_string(g.crossings_placed) + " after untangling (" +
                   std::to_string(g.crossings_authored) + " as authored)";
       }
@@ -551,7 +607,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         DressedGarment& g = result.garments[k];
         g.crossings_placed = count_intersections(g.placed, g.mesh.F);
         report += (report.empty() ? "" : "; ") + g.name + " moved out over " + result.garments[k - 1].name + ": " +
-                  std::to_string(graded[k].vertices) + " vertices, by up to " + number(1e3 * graded[k].largest, 3) + " mm";
+                  counted(graded[k].vertices, "vertex", "vertices") + ", by up to " + number(1e3 * graded[k].largest, 3) + " mm";
         // Moved out at an armpit or the crotch, where the body's normals of two parts face each
         // other, a placed garment's sleeve and side (or two legs) cross: it is moved onto its graded
         // positions from an uncrossed shape, its parts held apart on the way (as after placement).
@@ -561,7 +617,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         if (g.placed_by_placement && g.crossings_placed > g.crossings_authored) {
           const int graded_crossings = g.crossings_placed;
           untangle_along_path(result.garments, k);
-          report += ", crossing itself " + std::to_string(graded_crossings) + " times, " + std::to_string(g.crossings_placed) +
+          report += ", crossing itself " + counted(graded_crossings, "time", "times") + ", " + std::to_string(g.crossings_placed) +
                     " after untangling (" + std::to_string(g.crossings_authored) + " as authored)";
         }
         g.inside_placed = surface_fit(g.placed, inside).inside;
@@ -570,7 +626,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         stage.done(false, "every garment already lies over the one beneath it");
       } else {
         const int after = crossings_between(result.garments, &DressedGarment::placed);
-        stage.done(true, report + "; the garments cross each other " + std::to_string(after) + " times (" +
+        stage.done(true, report + "; the garments cross each other " + counted(after, "time", "times") + " (" +
                              std::to_string(before) + " before)");
       }
     }
@@ -682,9 +738,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         for (std::size_t k = 0; k < result.garments.size(); ++k) after += own_crossings(k);
         held += "; settled again holding " + std::to_string(tangled) + " particles of the garments' own crossings as authored";
         if (result.settle.ok && after < before) {
-          held += " (" + std::to_string(before) + " → " + std::to_string(after) + " crossings)";
+          held += " (" + std::to_string(before) + " → " + counted(after, "crossing", "crossings") + ")";
         } else {
-          held += ", not kept (" + (result.settle.ok ? std::to_string(after) + " crossings against " + std::to_string(before)
+          held += ", not kept (" + (result.settle.ok ? counted(after, "crossing", "crossings") + " against " + std::to_string(before)
                                                      : result.settle.stopped_reason) + ")";
           sim = std::move(free_sim);
           result.settle = free_run;
@@ -699,10 +755,10 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
         g.dressed = sim->positions().middleRows(first[k], first[k + 1] - first[k]);
         g.tangle_held_vertices = static_cast<int>(hold[k].size());
         if (g.waistband_vertices > 0)
-          belts += "; waistband of " + g.name + " held (" + std::to_string(g.waistband_vertices) + " vertices)";
+          belts += "; waistband of " + g.name + " held (" + counted(g.waistband_vertices, "vertex", "vertices") + ")";
       }
       held = belts + held;
-      stage.done(true, std::to_string(result.settle.totals.steps) + " steps, " + number(sim->time()) +
+      stage.done(true, counted(result.settle.totals.steps, "step", "steps") + ", " + number(sim->time()) +
                            " s simulated, " + result.settle.stopped_reason + held);
     }
   }
@@ -725,15 +781,15 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
           report += (report.empty() ? "" : "; ") + g.name + " " + number(1e3 * g.padding.thickness) + " mm asked, shells " +
                     number(1e3 * g.padding.gap_min) + "–" + number(1e3 * g.padding.gap_max) + " mm apart (median " +
                     number(1e3 * g.padding.gap_median) + "), " + std::to_string(g.padding.start_at_full) + " of " +
-                    std::to_string(g.dressed.rows()) + " vertices started at the full thickness";
-      stage.done(true, report + "; " + std::to_string(p.run.totals.steps) + " steps, " + number(p.simulated) +
+                    counted(g.dressed.rows(), "vertex", "vertices") + " started at the full thickness";
+      stage.done(true, report + "; " + counted(p.run.totals.steps, "step", "steps") + ", " + number(p.simulated) +
                            " s simulated, " + p.run.stopped_reason);
     }
   }
 
   result.layer_crossings = crossings_between(result.garments, &DressedGarment::dressed);
   if (result.layer_crossings > 0)
-    result.warnings.push_back("the garments cross each other " + std::to_string(result.layer_crossings) + " times");
+    result.warnings.push_back("the garments cross each other " + counted(result.layer_crossings, "time", "times"));
   for (std::size_t k = 0; k < result.garments.size(); ++k) {
     DressedGarment& g = result.garments[k];
     g.crossings_dressed = count_intersections(g.dressed, g.mesh.F);

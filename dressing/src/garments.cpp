@@ -15,6 +15,7 @@
 #include "dresskit/cloth/triangle_bvh.h"
 #include "dresskit/mesh/arap.h"
 #include "dresskit/mesh/errors.h"
+#include "dresskit/mesh/names.h"
 #include "dresskit/mesh/topology.h"
 
 using namespace dresskit::cloth;
@@ -66,10 +67,10 @@ std::pair<Eigen::MatrixX3d, int> fit_outside(const DressedGarment& g, const Eige
 std::vector<std::string> dressed_warnings(const DressedGarment& g, const std::string& padding_stalled) {
   std::vector<std::string> w;
   if (g.crossings_dressed > g.crossings_authored)
-    w.push_back(g.name + " crosses itself " + std::to_string(g.crossings_dressed) + " times (" +
+    w.push_back(g.name + " crosses itself " + counted(g.crossings_dressed, "time", "times") + " (" +
                 std::to_string(g.crossings_authored) + (g.from_pattern ? " as sewn)" : " as authored)"));
   if (g.inside_dressed > 0)
-    w.push_back(g.name + " has " + std::to_string(g.inside_dressed) + " vertices deeper than 2 mm inside the body");
+    w.push_back(g.name + " has " + counted(g.inside_dressed, "vertex", "vertices") + " deeper than 2 mm inside the body");
   const SewnPattern& p = g.pattern;
   for (std::size_t k = 0; k < p.panel_area_dressed.size() && k < p.panel_area.size(); ++k) {
     const double change = p.panel_area_dressed[k] / p.panel_area[k] - 1.0;
@@ -84,7 +85,7 @@ std::vector<std::string> dressed_warnings(const DressedGarment& g, const std::st
     char limit[32];
     std::snprintf(limit, sizeof limit, "%.3g", 1e3 * g.padding.min);
     w.push_back(g.name + ": the padding " + padding_stalled + "; kept where it stopped, " +
-                std::to_string(g.padding.below_min) + " vertices below its lower limit of " + limit + " mm");
+                counted(g.padding.below_min, "vertex", "vertices") + " below its lower limit of " + limit + " mm");
   }
   return w;
 }

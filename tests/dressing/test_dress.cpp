@@ -457,6 +457,13 @@ TEST(Dress, ASuitWornOverAnotherIsMovedOutOverIt) {
   EXPECT_EQ(outer.crossings_authored, 43);
   EXPECT_LE(outer.crossings_placed, 80);
   EXPECT_EQ(outer.crossings_placed, count_intersections(outer.placed, outer.mesh.F));
+  // Given the other way round with the order inferred: both are tops and the casualsuit has the
+  // larger surface (t-shirt and long jeans), but the elegantsuit lies farther out where both cover
+  // the body, so it goes outside.
+  o.infer_layers = true;
+  const DressResult inferred = dress(body, {suits[1], suits[0]}, o);
+  EXPECT_EQ(inferred.garments[0].name, inner.name);
+  EXPECT_EQ(inferred.garments[1].name, outer.name);
 }
 
 // The man's casualsuit placed over the woman's own: at the armpits and the crotch the body's normal

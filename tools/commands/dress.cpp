@@ -13,6 +13,7 @@
 #include "dresskit/dressing/outputs.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/mesh/names.h"
 #include "dresskit/pattern/pattern.h"
 #include "common/output_folder.h"
 #include "common/progress.h"
@@ -203,11 +204,12 @@ int DressCommand::run() {
   } else {
     for (const DressedGarment& g : r.garments) {
       std::cout << g.name << ": " << (g.placed_by_placement ? "placed" : "already on the body") << ", "
-                << g.crossings_dressed << " crossings, " << g.inside_dressed << " vertices inside, largest strain "
-                << g.max_strain_dressed << " (" << g.springs_over_limit << " springs over " << kOverLimit << ")";
+                << counted(g.crossings_dressed, "crossing", "crossings") << ", "
+                << counted(g.inside_dressed, "vertex", "vertices") << " inside, largest strain " << g.max_strain_dressed
+                << " (" << counted(g.springs_over_limit, "spring", "springs") << " over " << kOverLimit << ")";
       if (g.from_pattern)
-        std::cout << ", sewn from " << g.pattern.panels.size() << " panels (" << g.pattern.stitches
-                  << " seams, largest gap " << 1e3 * g.pattern.max_gap << " mm)";
+        std::cout << ", sewn from " << counted(static_cast<long long>(g.pattern.panels.size()), "panel", "panels") << " ("
+                  << counted(g.pattern.stitches, "seam", "seams") << ", largest gap " << 1e3 * g.pattern.max_gap << " mm)";
       std::cout << "\n";
     }
     std::cout << "wrote " << dir << " in " << written["seconds"].get<double>() << " s\n";

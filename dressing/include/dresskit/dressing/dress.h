@@ -73,7 +73,8 @@ struct DressOptions {
   /// Simulated time settling takes at most [s]; 0 = the quality's (0.5, 1 or 2 s).
   double settle_seconds = 0.0;
   /// false: the garments are worn inside to outside in the order given; true: the order is
-  /// inferred from their kinds (bottoms under tops; of one kind, the larger surface outside).
+  /// inferred from their kinds (bottoms under tops; of one kind, the one lying farther from the body
+  /// where both already lie on it, else the larger surface outside).
   bool infer_layers = false;
   alignment::PlacementOptions placement;
   segmentation::SegmentationOptions segmentation;

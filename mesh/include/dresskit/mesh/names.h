@@ -12,6 +12,11 @@
 
 namespace dresskit {
 
+/// "1 vertex", "2 vertices": a count and the noun it counts, singular for one.
+inline std::string counted(long long n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
 /// (name, value) pairs; a value's first name is the one printed, later ones are aliases.
 template <typename E>
 using NameTable = std::initializer_list<std::pair<const char*, E>>;
