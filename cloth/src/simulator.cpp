@@ -114,9 +114,14 @@ void ClothSimulator::set_pinned(const std::vector<int>& vertices) {
     pinned_[p] = true;
     v_.row(p).setZero();
   }
+  for (int p = 0; p < x_.rows(); ++p)
+    if (!(model_.mass(p) > 0.0)) {
+      pinned_[p] = true;
+      v_.row(p).setZero();
+    }
   inverse_mass_ = model_.mass.cwiseInverse();
   for (int p = 0; p < x_.rows(); ++p)
-    if (pinned_[p] || !(model_.mass(p) > 0.0)) inverse_mass_(p) = 0.0;
+    if (pinned_[p]) inverse_mass_(p) = 0.0;
 }
 
 void ClothSimulator::set_pin_motion(const PinMotion& motion) {

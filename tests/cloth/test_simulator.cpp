@@ -169,6 +169,33 @@ TEST(Simulator, DampedClothLosesEnergyMonotonically) {
   }
 }
 
+// A vertex in no face (a stray point of an exported mesh) has no mass: it is held where it is, and
+// the rest of the cloth moves as it would without it, with every integrator.
+TEST(Simulator, AVertexInNoFaceStaysAndTheClothMovesAsWithoutIt) {
+  const int n = 6;
+  const TriangleMesh g = make_grid({0.5, 0.5}, {n, n}, {0, 0, 0}, {0, 0, 1});
+  TriangleMesh stray = g;
+  stray.V.conservativeResize(g.V.rows() + 1, 3);
+  stray.V.row(g.V.rows()) << 0.3, 0.3, 0.3;
+  for (Integrator integrator : {Integrator::projective, Integrator::implicit_euler, Integrator::newton}) {
+    SimulationOptions o;
+    o.integrator = integrator;
+    ClothSimulator with(build_cloth(stray, soft_fabric()), o), without(build_cloth(g, soft_fabric()), o);
+    with.set_pinned(top_corners(n));
+    without.set_pinned(top_corners(n));
+    EXPECT_TRUE(with.pinned()[std::size_t(g.V.rows())]);
+    for (int step = 0; step < 30; ++step) {
+      const StepResult a = with.step(), b = without.step();
+      ASSERT_TRUE(a.ok) << to_string(integrator) << ": " << a.failure;
+      ASSERT_TRUE(b.ok) << b.failure;
+    }
+    EXPECT_EQ(with.positions().row(g.V.rows()), stray.V.row(g.V.rows())) << to_string(integrator);
+    EXPECT_LT((with.positions().topRows(g.V.rows()) - without.positions()).cwiseAbs().maxCoeff(), 1e-9)
+        << to_string(integrator);
+    EXPECT_GT((without.positions() - g.V).rowwise().norm().maxCoeff(), 0.003);  // it sagged
+  }
+}
+
 TEST(Simulator, StrainLimitingHoldsEveryStepAndPinsStayPut) {
   const int n = 16;
   const TriangleMesh g = make_grid({1.0, 1.0}, {n, n}, {0, 0, 0}, {0, 0, 1});

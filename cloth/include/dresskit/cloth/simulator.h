@@ -204,7 +204,9 @@ class ClothSimulator {
   ClothSimulator(ClothSimulator&&) noexcept;
   ClothSimulator& operator=(ClothSimulator&&) noexcept;
 
-  /// Pinned vertices keep their positions exactly and have zero velocity.
+  /// Pinned vertices keep their positions exactly and have zero velocity. Particles without mass
+  /// (vertices in no face: nothing of the cloth) are always pinned, so that they stay where they
+  /// are and every integrator's system stays regular.
   void set_pinned(const std::vector<int>& vertices);
   const std::vector<bool>& pinned() const { return pinned_; }
   /// Drives pinned particles (they are pinned by this call); positions at time 0 are the current ones.
