@@ -6,6 +6,7 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cfloat>
 #include <cmath>
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <unordered_map>
 
 #include "dresskit/mesh/names.h"
@@ -258,6 +260,19 @@ TriangleMesh load_mesh(const std::string& path, const LoadOptions& options) {
         throw InputError(path + ": a face corner matches no vertex line (file changed while read?)");
       }
     }
+  } else if (detail::lower_extension(path) == "stl") {
+    // STL stores every triangle's corners anew (and a normal per face, so assimp keeps them apart):
+    // corners at one position are one vertex, numbered in the order first met.
+    std::map<std::array<double, 3>, int> row_of;
+    std::vector<Eigen::Vector3d> rows;
+    for (size_t i = 0; i < g.positions.size(); ++i) {
+      const Eigen::Vector3d& p = g.positions[i];
+      const auto [at, fresh] = row_of.emplace(std::array<double, 3>{p.x(), p.y(), p.z()}, static_cast<int>(rows.size()));
+      if (fresh) rows.push_back(p);
+      to_row[i] = at->second;
+    }
+    mesh.V.resize(static_cast<Eigen::Index>(rows.size()), 3);
+    for (size_t r = 0; r < rows.size(); ++r) mesh.V.row(static_cast<Eigen::Index>(r)) = rows[r].transpose();
   } else {
     mesh.V.resize(static_cast<Eigen::Index>(g.positions.size()), 3);
     for (size_t i = 0; i < g.positions.size(); ++i) {

@@ -93,6 +93,21 @@ TEST_P(RoundTrip, SurfaceSurvives) {
 INSTANTIATE_TEST_SUITE_P(AllFormats, RoundTrip,
                          ::testing::Values("obj", "ply", "off", "stl", "glb", "gltf", "fbx"));
 
+// STL stores each triangle's corners anew: read, the corners at one position are one vertex, so a
+// closed surface is closed as read (a body or garment in STL is usable without cleaning).
+TEST(Io, StlCornersAtOnePositionAreOneVertex) {
+  test::TempDir dir;
+  const TriangleMesh m = fixtures::cube(0.5);
+  save_mesh(m, dir.file("cube.stl"));
+  const TriangleMesh back = load_mesh(dir.file("cube.stl"));
+  EXPECT_EQ(back.num_vertices(), 8);
+  EXPECT_EQ(back.num_faces(), 12);
+  const auto t = analyse_topology(back);
+  EXPECT_TRUE(t.closed);
+  EXPECT_EQ(t.num_components, 1);
+  expect_same_surface(m, back, 1e-6);
+}
+
 TEST(Io, UnitsAndUpAxisAreApplied) {
   test::TempDir dir;
   write_text(dir.file("tri.obj"), "v 0 0 0\nv 10 0 0\nv 0 0 20\nf 1 2 3\n");
