@@ -10,7 +10,8 @@
 // of its index. --body dresses another of the shared bodies (a name under bodies/, in its units),
 // with the panels carried by frames, or by parts with --pattern-body (the pattern's own body); a
 // pattern refused on that body (dress throws InputError) makes a row whose outcome says so.
-//   bench_pattern OUT.csv [--edge 0.02] [--patterns a,b] [--trials 1] [--body gc_mean_all]
+// --first-trial runs trials from that one on (one trial of a distribution again).
+//   bench_pattern OUT.csv [--edge 0.02] [--patterns a,b] [--trials 1] [--first-trial 0] [--body gc_mean_all]
 //                 [--body-units m] [--pattern-body NAME]
 #include <algorithm>
 #include <chrono>
@@ -39,11 +40,11 @@ using namespace dresskit;
 int main(int argc, char** argv) {
   if (argc < 2 || argv[1][0] == '-') {
     std::cerr << "usage: bench_pattern OUT.csv [--edge 0.02] [--patterns gc_shirt_mean,...] "
-                 "[--trials 1] [--body gc_mean_all] [--body-units m] [--pattern-body NAME]\n";
+                 "[--trials 1] [--first-trial 0] [--body gc_mean_all] [--body-units m] [--pattern-body NAME]\n";
     return 64;
   }
   double edge = 0.02;
-  int trials = 1;
+  int trials = 1, first_trial = 0;
   std::vector<std::string> patterns = {"gc_shirt_mean", "gc_hoody_mean", "gc_dress_pencil"};
   std::string body_name = "gc_mean_all", pattern_body;
   LoadOptions body_load;
@@ -53,6 +54,8 @@ int main(int argc, char** argv) {
       edge = std::stod(value);
     } else if (key == "--trials") {
       trials = std::stoi(value);
+    } else if (key == "--first-trial") {
+      first_trial = std::stoi(value);
     } else if (key == "--body") {
       body_name = value;
     } else if (key == "--body-units") {
@@ -77,7 +80,7 @@ int main(int argc, char** argv) {
          "max_panel_area_change,outcome\n";
   std::cout << "CPU: " << bench::cpu_model() << "\n";
   for (const std::string& name : patterns)
-    for (int trial = 0; trial < trials; ++trial) {
+    for (int trial = first_trial; trial < first_trial + trials; ++trial) {
       TriangleMesh jittered = body_as_read;
       for (Eigen::Index v = 0; v < jittered.V.rows(); ++v)
         jittered.V(v, (v * 7) % 3) += trial * 1e-12 * std::sin(1.7 * static_cast<double>(v));
