@@ -85,6 +85,10 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("moon-silk"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("c")));
+  // Given before the inputs, --fabric takes one value: the body and garment stay the inputs.
+  r = run(dir, "dress --fabric moon-silk " + data(kChild) + " " + data(kOutfit) + " --units dm -o " + dir.file("c"));
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("fabric: unknown name 'moon-silk'"), std::string::npos) << r.err;
   // MakeHuman's elegantsuit fitted onto the child: its placement stretches springs by up to ~500 %,
   // beyond the simulator's blow-up strain (settled, its first step blew up): refused, not settled.
   r = run(dir, "dress " + data(kChild) + " " + data("garments/mh_female_elegantsuit01.obj") + " --units dm -o " +

@@ -33,14 +33,19 @@ void DressCommand::add_to(CLI::App& app) {
   command->add_option("--body-units", body_units, "length unit of BODY (overrides --units)");
   command->add_option("--garment-units", garment_units, "length unit of the garments (overrides --units)");
   option_with_default(command, "--up", up, "up axis of every input: +x, -x, +y, -y, +z, -z");
+  // One value per --fabric, --padding or --garment-labels, each repeated per garment: a list after one
+  // would take the body and garments given after it.
   command->add_option("--fabric", fabrics,
-                      "fabric of each garment in order (one: all of them); default gray-interlock");
+                      "fabric of each garment in order, one per --fabric (one: all of them); default gray-interlock")
+      ->allow_extra_args(false);
   command->add_option("--padding", paddings,
                       "padding of each garment in order (one: all of them): none, or heat (a double layer "
-                      "as thick as heat conduction gives for its fabric, docs/dressing.md); default none");
+                      "as thick as heat conduction gives for its fabric, docs/dressing.md); default none")
+      ->allow_extra_args(false);
   command->add_option("--body-labels", body_labels, "part labels of the body (labels JSON): no segmentation");
   command->add_option("--garment-labels", garment_labels,
-                      "part labels of each garment in order (one file: all of them, keyed by file stem)");
+                      "part labels of each garment in order (one file: all of them, keyed by file stem)")
+      ->allow_extra_args(false);
   command->add_option("--pattern-body", pattern_body,
                       "the body the sewing patterns are placed around (GarmentCode's body mesh): their panels "
                       "are carried to BODY part by part (docs/pattern.md); default: by the bodies' frames");
@@ -51,7 +56,7 @@ void DressCommand::add_to(CLI::App& app) {
   option_with_default(command, "--quality", quality, "fast, balanced or accurate");
   option_with_default(command, "--layers", layers,
                       "given: worn inside to outside in the order given; inferred: from the "
-                      "garments' kinds (bottoms under tops, the larger outside)");
+                      "garments' kinds (bottoms under tops; of one kind, the one lying farther out)");
   command->add_flag("--no-settle", no_settle, "stop after placement (dressed = placed)");
   command->add_flag("--json", as_json, "print the report as JSON on stdout (nothing else)");
   command->add_flag("--segments", segments, "also write segments.ply: every mesh coloured by part");

@@ -48,8 +48,8 @@ class Row:
         """The arguments after `dress-a-mesh dress`, output folder excluded."""
         args = [self.body] + self.garments
         args += ["--body-units", self.body_units, "--garment-units", self.garment_units]
-        if self.fabrics:
-            args += ["--fabric"] + self.fabrics
+        for fabric in self.fabrics:
+            args += ["--fabric", fabric]
         if self.up:
             args += ["--up", self.up]
         args += ["--quality", self.quality]
