@@ -327,7 +327,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
           }
           parts = {&it->second, &*labelled_body};
         }
-        sew_pattern_garment(g, result.body, body_distance, options, parts, d);
+        sew_pattern_garment(g, result.body, body_file.load, body_distance, options, parts, d);
       } else
         d.mesh = load(g.file);
       result.garments.push_back(std::move(d));

@@ -185,7 +185,7 @@ bool is_pattern_garment(const GarmentFile& g) {
   return !g.file.mesh && pattern::is_pattern_file(g.file.path);
 }
 
-void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
+void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const LoadOptions& body_units,
                          const std::shared_ptr<const cloth::MeshDistance>& body_distance,
                          const DressOptions& options, const PartBodies& parts, DressedGarment& d) {
   const pattern::Pattern p = pattern::read_pattern(g.file.path);
@@ -220,7 +220,7 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body,
   d.mesh = sewn.garment;
   d.mesh.labels.resize(0);  // panels are not body parts: the garment is segmented like a mesh
   d.mesh.label_names.clear();
-  d.file.load = LoadOptions{};  // the garment is made in metres, +Y up; its outputs are too
+  d.file.load = body_units;  // sewn around the body: its outputs are in the body's units and axes
   s.panels.clear();
   for (const pattern::Panel& panel : p.panels) s.panels.push_back(panel.name);
   s.panel_area.assign(cut.triangle_area.data(),

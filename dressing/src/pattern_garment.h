@@ -24,8 +24,9 @@ struct PartBodies {
 
 /// Reads the pattern of g, cuts it, sews it around the body (metres; body_distance is its
 /// distance) in g's fabric and welds it: fills d.mesh (the sewn garment, its rest shape) and
-/// d.pattern. Throws InputError naming the file and the panel, edge or stitch for a bad pattern.
-void sew_pattern_garment(const GarmentFile& g, const mesh::TriangleMesh& body,
+/// d.pattern; its outputs are to be in the body file's units and axes (`body_units`). Throws
+/// InputError naming the file and the panel, edge or stitch for a bad pattern.
+void sew_pattern_garment(const GarmentFile& g, const mesh::TriangleMesh& body, const mesh::LoadOptions& body_units,
                          const std::shared_ptr<const cloth::MeshDistance>& body_distance,
                          const DressOptions& options, const PartBodies& parts, DressedGarment& d);
 

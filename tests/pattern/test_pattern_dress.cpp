@@ -219,6 +219,28 @@ TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad_out")));
 }
 
+// A pattern has no 3D units of its own: sewn around a body given in centimetres, its outputs are in
+// centimetres too, lying on the body as read.
+TEST(PatternDressCli, APatternsOutputsAreInTheBodysUnits) {
+  DRESSKIT_REQUIRE_DATA();
+  using namespace test::cli;
+  test::TempDir dir;
+  TriangleMesh body = load_mesh(test::data_dir() + "/bodies/gc_mean_all.obj");
+  body.V *= 100.0;
+  save_mesh(body, dir.file("body_cm.obj"));
+  const std::string out = dir.file("out");
+  const CliRun r = run(dir, "dress " + dir.file("body_cm.obj") + " " +
+                                test::shared_pattern("gc_hoody_mean_specification.json") +
+                                " --body-units cm --no-settle -o " + out);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(j["garments"][0]["units"], "cm");
+  const TriangleMesh hoody = load_mesh(out + "/gc_hoody_mean_specification.placed.obj");
+  // The hood's top is at the top of the head (172 cm), within a few centimetres; in metres it would
+  // be at 1.7.
+  EXPECT_NEAR(hoody.V.col(1).maxCoeff(), body.V.col(1).maxCoeff(), 5.0);
+}
+
 // A pattern whose panels are placed two metres beside the body sews shut in the air: the garment is
 // not on the body, and the pattern is refused as placed for another body (exit 2, nothing written).
 TEST(PatternDressCli, APatternPlacedForAnotherBodyIsRefused) {
