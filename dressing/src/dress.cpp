@@ -361,14 +361,38 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   const double body_height = height(result.body);
   {
     Stage stage(result, options, "units");
-    if (!(body_height >= 0.5 && body_height <= 2.5)) {
+    {
       const double in_file = body_height / body_file.load.units.metres_per_unit;
       const std::string fits = units_for_body(in_file);
-      throw InputError(body_file.path + ": the body is " + number(body_height) + " m tall in units " +
-                       body_file.load.units.name +
-                       (fits.empty() ? ": give its units (--body-units)"
-                                     : "; with --body-units " + fits + " it would be " +
-                                           number(in_file * Units::parse(fits).metres_per_unit) + " m"));
+      // A body lying along another of the file's axes than the up axis given (a Z-up file read as
+      // Y-up), half as long again as it is tall (arms spread make it as wide as tall at most): that
+      // axis is named, with the units that would then fit.
+      const Eigen::MatrixX3d file = to_file_frame(result.body.V, body_file.load);
+      const Eigen::Vector3d extent = file.colwise().maxCoeff() - file.colwise().minCoeff();
+      Eigen::Index longest = 0;
+      extent.maxCoeff(&longest);
+      const UpAxis up = body_file.load.up;
+      const int up_index = up == UpAxis::pos_x || up == UpAxis::neg_x ? 0 : up == UpAxis::pos_y || up == UpAxis::neg_y ? 1 : 2;
+      std::string axis_hint;
+      if (longest != up_index && extent[longest] > 1.5 * in_file) {
+        const std::string name(1, "xyz"[longest]);
+        const std::string along = units_for_body(extent[longest]);
+        axis_hint = "; it is longest along the file's " + name + " axis: with --up " + name + " (or -" + name + ")" +
+                    (along.empty() || Units::parse(along).metres_per_unit == body_file.load.units.metres_per_unit
+                         ? ""
+                         : " and --body-units " + along) +
+                    " it would be " +
+                    number(extent[longest] * (along.empty() ? body_file.load.units.metres_per_unit
+                                                            : Units::parse(along).metres_per_unit)) +
+                    " m tall";
+      }
+      if (!axis_hint.empty() || !(body_height >= 0.5 && body_height <= 2.5))
+        throw InputError(body_file.path + ": the body is " + number(body_height) + " m tall in units " +
+                         body_file.load.units.name +
+                         (!axis_hint.empty() ? axis_hint
+                          : fits.empty()     ? ": give its units (--body-units)"
+                                             : "; with --body-units " + fits + " it would be " +
+                                               number(in_file * Units::parse(fits).metres_per_unit) + " m"));
     }
     // A body is closed or nearly so (a scan may lack its soles or the top of its head); a garment's
     // openings (neck, cuffs, hem, waist) add up to more than its wearer's height.

@@ -528,6 +528,20 @@ TEST(Dress, BadInputNamesTheFileAndWhatIsWrong) {
   const std::string tall = message(in_units(body_path("mh_woman_young_average"), "m"), garment);
   EXPECT_NE(tall.find("mh_woman_young_average.obj"), std::string::npos) << tall;
   EXPECT_NE(tall.find("--body-units dm"), std::string::npos) << tall;
+  // A body whose file is Z-up, read as Y-up: it lies along the file's z axis, which is named. Given
+  // with --up z, it is 1.61 m tall.
+  const test::TempDir dir;
+  TriangleMesh lying = load_mesh(body_path("mh_woman_young_average"));  // dm as numbers
+  lying.V = (Eigen::MatrixX3d(lying.V.rows(), 3) << lying.V.col(0), -lying.V.col(2), lying.V.col(1)).finished();
+  save_mesh(lying, dir.file("woman_zup.obj"));
+  MeshFile zup = in_units(dir.file("woman_zup.obj"), "dm");
+  const std::string axis = message(zup, garment);
+  EXPECT_NE(axis.find("woman_zup.obj: the body is"), std::string::npos) << axis;
+  EXPECT_NE(axis.find("longest along the file's z axis: with --up z (or -z) it would be 1.61 m tall"), std::string::npos)
+      << axis;
+  zup.load.up = UpAxis::pos_z;
+  const TriangleMesh standing = load_mesh(zup.path, zup.load);
+  EXPECT_NEAR(standing.V.col(1).maxCoeff() - standing.V.col(1).minCoeff(), 1.61, 0.01);
   // A garment given as the body.
   const std::string not_body = message(in_units(outfit_path("female_casualsuit01"), "dm"), garment);
   EXPECT_NE(not_body.find("does not look like a body"), std::string::npos) << not_body;
