@@ -386,13 +386,21 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
                                                             : Units::parse(along).metres_per_unit)) +
                     " m tall";
       }
+      // Garment meshes in the body's units that fit it as they are would want the same units: one
+      // --units for all rather than one option a run.
+      bool as_body = true;
+      for (const DressedGarment& g : result.garments) {
+        const double size = bounding_box(g.mesh).sizes().maxCoeff();
+        as_body = as_body && !g.from_pattern && g.file.load.units.metres_per_unit == body_file.load.units.metres_per_unit &&
+                  size >= 0.1 * body_height && size <= 1.5 * body_height;
+      }
       if (!axis_hint.empty() || !(body_height >= 0.5 && body_height <= 2.5))
         throw InputError(body_file.path + ": the body is " + number(body_height) + " m tall in units " +
                          body_file.load.units.name +
                          (!axis_hint.empty() ? axis_hint
                           : fits.empty()     ? ": give its units (--body-units)"
-                                             : "; with --body-units " + fits + " it would be " +
-                                               number(in_file * Units::parse(fits).metres_per_unit) + " m"));
+                                             : "; with " + std::string(as_body ? "--units " : "--body-units ") + fits +
+                                               " it would be " + number(in_file * Units::parse(fits).metres_per_unit) + " m"));
     }
     // A body is closed or nearly so (a scan may lack its soles or the top of its head); a garment's
     // openings (neck, cuffs, hem, waist) add up to more than its wearer's height.

@@ -528,6 +528,10 @@ TEST(Dress, BadInputNamesTheFileAndWhatIsWrong) {
   const std::string tall = message(in_units(body_path("mh_woman_young_average"), "m"), garment);
   EXPECT_NE(tall.find("mh_woman_young_average.obj"), std::string::npos) << tall;
   EXPECT_NE(tall.find("--body-units dm"), std::string::npos) << tall;
+  // Both in metres as read: one --units for both.
+  const std::string both = message(in_units(body_path("mh_woman_young_average"), "m"),
+                                   {in_units(outfit_path("female_casualsuit01"), "m"), ""});
+  EXPECT_NE(both.find("with --units dm it would be 1.61 m"), std::string::npos) << both;
   // A body whose file is Z-up, read as Y-up: it lies along the file's z axis, which is named. Given
   // with --up z, it is 1.61 m tall.
   const test::TempDir dir;
