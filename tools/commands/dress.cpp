@@ -75,7 +75,12 @@ LoadOptions load_options(const char* option, const std::string& specific, const 
     const std::string what = e.what();
     throw InputError(std::string(!specific.empty() ? option : "--units") + what.substr(what.find(':')));
   }
-  o.up = parse_up_axis(up);
+  try {
+    o.up = parse_up_axis(up);
+  } catch (const InputError& e) {  // "up axis: '…' is not …", named by the option
+    const std::string what = e.what();
+    throw InputError("--up" + what.substr(what.find(':')));
+  }
   return o;
 }
 
@@ -160,9 +165,13 @@ int DressCommand::run() {
   if (!pattern_body.empty() && !any_pattern)
     std::cerr << "dress-a-mesh: warning: --pattern-body " << pattern_body
               << ": no garment is a sewing pattern (.json); not used\n";
-  if (pattern_body.empty() && (!pattern_body_units.empty() || !pattern_body_labels.empty()))
-    std::cerr << "dress-a-mesh: warning: --pattern-body-units and --pattern-body-labels apply to "
-                 "--pattern-body, which is not given; not used\n";
+  if (pattern_body.empty() && (!pattern_body_units.empty() || !pattern_body_labels.empty())) {
+    const std::string given = !pattern_body_units.empty() && !pattern_body_labels.empty()
+                                  ? "--pattern-body-units and --pattern-body-labels apply"
+                              : !pattern_body_units.empty() ? "--pattern-body-units applies"
+                                                            : "--pattern-body-labels applies";
+    std::cerr << "dress-a-mesh: warning: " << given << " to --pattern-body, which is not given; not used\n";
+  }
   std::vector<std::string> inputs = garments;
   inputs.push_back(body);
   inputs.push_back(body_labels);
