@@ -130,6 +130,11 @@ TEST(DressCli, AnOutputThatIsAnInputIsRefusedBeforeAnyWork) {
   EXPECT_NE(r.err.find(file + "/sub/out: cannot be made: "), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("a_file is not a directory"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("dress: load"), std::string::npos) << r.err;
+  // A folder in which nothing can be made (for root too): said before any work.
+  r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm -o /proc/dresskit-out");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_NE(r.err.find("/proc/dresskit-out: cannot be written: no folder can be made in /proc"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("dress: load"), std::string::npos) << r.err;
   r = run(dir, "dress " + data(kChild) + " " + garment + " --units dm --no-settle --pattern-body " + data(kChild) +
                    " -o " + dir.file("out"));
   EXPECT_EQ(r.code, 0) << r.err;

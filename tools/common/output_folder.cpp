@@ -71,17 +71,21 @@ void write_folder(const std::string& dir, const std::function<void(const fs::pat
 
 void check_output_folder(const std::string& dir, const std::vector<std::string>& inputs) {
   std::error_code ec;
-  if (!fs::exists(dir, ec)) {
-    // A folder to be made under a file cannot be: said before any work rather than after it.
-    for (fs::path up = fs::absolute(dir, ec).parent_path(); !up.empty(); up = up.parent_path()) {
-      if (fs::exists(up, ec)) {
-        if (!fs::is_directory(up, ec)) throw OutputError(dir + ": cannot be made: " + up.string() + " is not a directory");
-        break;
-      }
-      if (up == up.parent_path()) break;
+  // The outputs are written beside DIR, in its parent (made where missing): a folder to be made
+  // under a file, or in a folder that cannot be written, is said before any work rather than after.
+  for (fs::path up = fs::absolute(dir, ec).parent_path(); !up.empty(); up = up.parent_path()) {
+    if (fs::exists(up, ec)) {
+      if (!fs::is_directory(up, ec)) throw OutputError(dir + ": cannot be made: " + up.string() + " is not a directory");
+      // Tried rather than asked (access() says yes to root on any folder): a folder made and removed.
+      const fs::path probe = up / (".dress-a-mesh-probe-" + std::to_string(::getpid()));
+      const bool made = fs::create_directory(probe, ec);
+      if (ec) throw OutputError(dir + ": cannot be written: no folder can be made in " + up.string() + " (" + ec.message() + ")");
+      if (made) fs::remove(probe, ec);
+      break;
     }
-    return;
+    if (up == up.parent_path()) break;
   }
+  if (!fs::exists(dir, ec)) return;
   for (const std::string& input : inputs) {
     std::error_code same;
     if (!input.empty() && fs::equivalent(dir, input, same))

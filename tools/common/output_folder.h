@@ -18,7 +18,8 @@ void write_folder(const std::string& dir, const std::function<void(const std::fi
                   const std::vector<std::string>& inputs = {});
 
 /// Before any work: throws InputError when dir is one of `inputs` (a file given as the output
-/// folder), OutputError when dir exists and is not a folder, or does not exist and lies under a file.
+/// folder), OutputError when dir exists and is not a folder, or does not exist and lies under a
+/// file, or when the folder it is written in cannot be written.
 void check_output_folder(const std::string& dir, const std::vector<std::string>& inputs);
 
 }  // namespace dresskit::cli
