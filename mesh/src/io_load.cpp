@@ -242,6 +242,9 @@ TriangleMesh load_mesh(const std::string& path, const LoadOptions& options) {
   if (!scene || !scene->mRootNode) {
     std::string why = importer.GetErrorString();
     std::replace(why.begin(), why.end(), '\n', ' ');
+    // assimp's checks of its own structures, said as what they mean for the file.
+    if (why.find("mNumMeshes is 0") != std::string::npos || why.find("contains no faces") != std::string::npos)
+      throw InputError(path + ": mesh has no faces");
     throw InputError(path + ": cannot read mesh: " + (why.empty() ? "unknown reason" : why));
   }
   Gathered g;

@@ -165,6 +165,8 @@ int DressCommand::run() {
   if (!pattern_body.empty() && !any_pattern)
     std::cerr << "dress-a-mesh: warning: --pattern-body " << pattern_body
               << ": no garment is a sewing pattern (.json); not used\n";
+  if (no_settle && std::find(paddings.begin(), paddings.end(), "heat") != paddings.end())
+    std::cerr << "dress-a-mesh: warning: --padding heat is settled with the garment; not used with --no-settle\n";
   if (pattern_body.empty() && (!pattern_body_units.empty() || !pattern_body_labels.empty())) {
     const std::string given = !pattern_body_units.empty() && !pattern_body_labels.empty()
                                   ? "--pattern-body-units and --pattern-body-labels apply"
