@@ -10,7 +10,7 @@
 namespace dresskit::segmentation {
 
 AxesEstimate estimate_axes(const Eigen::MatrixX3d& V, const Eigen::VectorXd& area,
-                           const Eigen::Vector3d& up_given, const Eigen::Vector3d& forward_given) {
+                           const Eigen::Vector3d& up_given, const Eigen::Vector3d& forward_given, bool has_feet) {
   AxesEstimate axes;
   const double total = area.sum();
   const Eigen::Vector3d centre = total > 0 ? Eigen::Vector3d((V.transpose() * area) / total)
@@ -59,7 +59,7 @@ AxesEstimate estimate_axes(const Eigen::MatrixX3d& V, const Eigen::VectorXd& are
       if (t > 0.08 && t < 0.2) shins += area(i) * f, shins_w += area(i);
     }
     const double offset = feet_w > 0 && shins_w > 0 ? feet / feet_w - shins / shins_w : 0.0;
-    if (std::abs(offset) > 0.01 * span) {
+    if (has_feet && std::abs(offset) > 0.01 * span) {
       if (offset < 0) axes.forward = -axes.forward;
       axes.forward_source = "feet";
     } else {

@@ -273,7 +273,9 @@ SegmentationResult segment_mesh(const TriangleMesh& mesh, const SegmentationOpti
     if (graph.faces(e) == 1 && component(graph.from(e)) >= 0)
       comps[component(graph.from(e))].closed = false;
   // Axes now: skirts are cut along them (their names come later).
-  r.axes = estimate_axes(mesh.V, area, o.up, o.forward);
+  // Feet only on a body: a closed surface, where a garment is open (its hem is no foot).
+  const bool closed = std::any_of(comps.begin(), comps.end(), [](const auto& c) { return c.closed; });
+  r.axes = estimate_axes(mesh.V, area, o.up, o.forward, closed);
   if (o.split_skirts) {
     int skirts = 0;
     for (auto& comp : comps) {
