@@ -195,6 +195,50 @@ bool on_body(const SurfaceFit& fit, Eigen::Index vertices, double body_height, c
 /// The body cells [m] in which layers inferred for garments on the body compare their heights.
 constexpr double kLayerCell = 0.02;
 
+/// A body of a person's height (0.5–2.5 m) standing along its file's up axis; otherwise an
+/// InputError naming the axis, or the units, that would make it one (one --units for all where the
+/// garment meshes so far are in the body's units and fit it as they are).
+void check_body_units(const TriangleMesh& body, const MeshFile& body_file, const std::vector<DressedGarment>& garments) {
+  const double body_height = height(body);
+  const double in_file = body_height / body_file.load.units.metres_per_unit;
+  const std::string fits = units_for_body(in_file);
+  // A body lying along another of the file's axes than the up axis given (a Z-up file read as
+  // Y-up), half as long again as it is tall (arms spread make it as wide as tall at most): that
+  // axis is named, with the units that would then fit.
+  const Eigen::MatrixX3d file = to_file_frame(body.V, body_file.load);
+  const Eigen::Vector3d extent = file.colwise().maxCoeff() - file.colwise().minCoeff();
+  Eigen::Index longest = 0;
+  extent.maxCoeff(&longest);
+  const UpAxis up = body_file.load.up;
+  const int up_index = up == UpAxis::pos_x || up == UpAxis::neg_x ? 0 : up == UpAxis::pos_y || up == UpAxis::neg_y ? 1 : 2;
+  std::string axis_hint;
+  if (longest != up_index && extent[longest] > 1.5 * in_file) {
+    const std::string name(1, "xyz"[longest]);
+    const std::string along = units_for_body(extent[longest]);
+    axis_hint = "; it is longest along the file's " + name + " axis: with --up " + name + " (or -" + name + ")" +
+                (along.empty() || Units::parse(along).metres_per_unit == body_file.load.units.metres_per_unit
+                     ? ""
+                     : " and --body-units " + along) +
+                " it would be " +
+                number(extent[longest] * (along.empty() ? body_file.load.units.metres_per_unit
+                                                        : Units::parse(along).metres_per_unit)) +
+                " m tall";
+  }
+  bool as_body = !garments.empty();
+  for (const DressedGarment& g : garments) {
+    const double size = bounding_box(g.mesh).sizes().maxCoeff();
+    as_body = as_body && !g.from_pattern && g.file.load.units.metres_per_unit == body_file.load.units.metres_per_unit &&
+              size >= 0.1 * body_height && size <= 1.5 * body_height;
+  }
+  if (!axis_hint.empty() || !(body_height >= 0.5 && body_height <= 2.5))
+    throw InputError(body_file.path + ": the body is " + number(body_height) + " m tall in units " +
+                     body_file.load.units.name +
+                     (!axis_hint.empty() ? axis_hint
+                      : fits.empty()     ? ": give its units (--body-units)"
+                                         : "; with " + std::string(as_body ? "--units " : "--body-units ") + fits +
+                                           " it would be " + number(in_file * Units::parse(fits).metres_per_unit) + " m"));
+}
+
 /// The simulator's options for a quality; the run's duration.
 SimulationOptions simulation_options(DressQuality q, double& duration) {
   SimulationOptions o;
@@ -306,6 +350,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       d.fabric = g.fabric.empty() ? "gray-interlock" : g.fabric;
       d.padded = g.padded;
       if (is_pattern_garment(g)) {  // a sewing pattern: cut, sewn, welded
+        // Sewn around the body: a body in the wrong units or lying down is said before, not as a
+        // seam that would not close minutes later.
+        check_body_units(result.body, body_file, result.garments);
         if (!body_distance) body_distance = std::make_shared<const MeshDistance>(result.body);
         PartBodies parts;
         if (!g.pattern_body.path.empty() || g.pattern_body.mesh) {
@@ -313,9 +360,15 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
           if (it == pattern_bodies.end()) {
             TriangleMesh from = load(g.pattern_body);
             const double tall = height(from);
-            if (!(tall >= 0.5 && tall <= 2.5))
+            if (!(tall >= 0.5 && tall <= 2.5)) {
+              const double in_file = tall / g.pattern_body.load.units.metres_per_unit;
+              const std::string fits = units_for_body(in_file);
               throw InputError(g.pattern_body.path + ": the pattern's body is " + number(tall) + " m tall in units " +
-                               g.pattern_body.load.units.name + ": give its units (--pattern-body-units)");
+                               g.pattern_body.load.units.name +
+                               (fits.empty() ? ": give its units (--pattern-body-units)"
+                                             : "; with --pattern-body-units " + fits + " it would be " +
+                                                   number(in_file * Units::parse(fits).metres_per_unit) + " m"));
+            }
             bool from_file = false;
             label(from, g.pattern_body, options.segmentation, from_file);
             it = pattern_bodies.emplace(g.pattern_body.path, std::move(from)).first;
@@ -360,47 +413,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   const double body_height = height(result.body);
   {
     Stage stage(result, options, "units");
-    {
-      const double in_file = body_height / body_file.load.units.metres_per_unit;
-      const std::string fits = units_for_body(in_file);
-      // A body lying along another of the file's axes than the up axis given (a Z-up file read as
-      // Y-up), half as long again as it is tall (arms spread make it as wide as tall at most): that
-      // axis is named, with the units that would then fit.
-      const Eigen::MatrixX3d file = to_file_frame(result.body.V, body_file.load);
-      const Eigen::Vector3d extent = file.colwise().maxCoeff() - file.colwise().minCoeff();
-      Eigen::Index longest = 0;
-      extent.maxCoeff(&longest);
-      const UpAxis up = body_file.load.up;
-      const int up_index = up == UpAxis::pos_x || up == UpAxis::neg_x ? 0 : up == UpAxis::pos_y || up == UpAxis::neg_y ? 1 : 2;
-      std::string axis_hint;
-      if (longest != up_index && extent[longest] > 1.5 * in_file) {
-        const std::string name(1, "xyz"[longest]);
-        const std::string along = units_for_body(extent[longest]);
-        axis_hint = "; it is longest along the file's " + name + " axis: with --up " + name + " (or -" + name + ")" +
-                    (along.empty() || Units::parse(along).metres_per_unit == body_file.load.units.metres_per_unit
-                         ? ""
-                         : " and --body-units " + along) +
-                    " it would be " +
-                    number(extent[longest] * (along.empty() ? body_file.load.units.metres_per_unit
-                                                            : Units::parse(along).metres_per_unit)) +
-                    " m tall";
-      }
-      // Garment meshes in the body's units that fit it as they are would want the same units: one
-      // --units for all rather than one option a run.
-      bool as_body = true;
-      for (const DressedGarment& g : result.garments) {
-        const double size = bounding_box(g.mesh).sizes().maxCoeff();
-        as_body = as_body && !g.from_pattern && g.file.load.units.metres_per_unit == body_file.load.units.metres_per_unit &&
-                  size >= 0.1 * body_height && size <= 1.5 * body_height;
-      }
-      if (!axis_hint.empty() || !(body_height >= 0.5 && body_height <= 2.5))
-        throw InputError(body_file.path + ": the body is " + number(body_height) + " m tall in units " +
-                         body_file.load.units.name +
-                         (!axis_hint.empty() ? axis_hint
-                          : fits.empty()     ? ": give its units (--body-units)"
-                                             : "; with " + std::string(as_body ? "--units " : "--body-units ") + fits +
-                                               " it would be " + number(in_file * Units::parse(fits).metres_per_unit) + " m"));
-    }
+    check_body_units(result.body, body_file, result.garments);
     // A body is closed or nearly so (a scan may lack its soles or the top of its head); a garment's
     // openings (neck, cuffs, hem, waist) add up to more than its wearer's height.
     const double open = analyse_topology(result.body).boundary_length;

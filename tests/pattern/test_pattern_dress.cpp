@@ -217,6 +217,16 @@ TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
   EXPECT_EQ(bad.code, 2);
   EXPECT_NE(bad.err.find("stitch 0: panel 'cuff' does not exist"), std::string::npos) << bad.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad_out")));
+  // A body in the wrong units is said before sewing (not as a seam left open minutes later).
+  const CliRun units = run(dir, "dress " + test::data_dir() + "/bodies/gc_mean_all.obj " +
+                                    test::shared_pattern("gc_hoody_mean_specification.json") +
+                                    " --body-units cm -o " + dir.file("units_out"));
+  EXPECT_EQ(units.code, 2);
+  EXPECT_NE(units.err.find("the body is 0.0172 m tall in units cm; with --body-units m it would be 1.72 m"),
+            std::string::npos)
+      << units.err;
+  EXPECT_EQ(units.err.find("sewing"), std::string::npos) << units.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("units_out")));
 }
 
 // A pattern has no 3D units of its own: sewn around a body given in centimetres, its outputs are in
