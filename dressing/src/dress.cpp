@@ -487,12 +487,13 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     Stage stage(result, options, "layers");
     if (options.infer_layers && result.garments.size() > 1) {
       const std::size_t n = result.garments.size();
-      std::vector<int> kind(n);
+      std::vector<int> kind(n), legs(n);
       std::vector<double> area(n);
       std::vector<std::unordered_map<std::int64_t, double>> height(n);  // empty: not on the body
       for (std::size_t k = 0; k < n; ++k) {
         const DressedGarment& g = result.garments[k];
         kind[k] = is_top(g) ? 1 : 0;
+        legs[k] = covers_legs(g) ? 1 : 0;
         area[k] = analyse_topology(g.mesh).area;
         if (on_body(surface_fit(g.mesh.V, inside), g.mesh.num_vertices(), body_height, options))
           height[k] = height_over_body(g.mesh.V, *body_distance, kLayerCell);
@@ -500,7 +501,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       const auto outside = [&](std::size_t a, std::size_t b) {
         if (kind[a] != kind[b]) return kind[a] > kind[b];
         const int over = lies_outside(height[a], height[b]);
-        return over != 0 ? over > 0 : area[a] > area[b];
+        if (over != 0) return over > 0;
+        if (legs[a] != legs[b]) return legs[a] < legs[b];  // a suit or a dress under a top
+        return area[a] > area[b];
       };
       // Insertion: a garment goes after every garment it lies outside (the relation need not be
       // transitive for three garments on the body, so no sort that assumes it).
@@ -526,7 +529,8 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     stage.done(result.garments.size() > 1,
                result.garments.size() < 2 ? "one garment: no layers to order"
                : options.infer_layers     ? "inside to outside, inferred from the garments' kinds (of one kind: the one lying farther out "
-                                                            "where both lie on the body, else the larger): " + order
+                                                            "where both lie on the body, else one without legs or a skirt "
+                                                            "over one with, else the larger): " + order
                                           : "inside to outside as given: " + order);
   }
 

@@ -369,10 +369,26 @@ bool names_legs(const std::string& part) { return part.rfind("leg", 0) == 0 || p
 bool names_sleeves(const std::string& part) { return part.rfind("sleeve", 0) == 0 || part.rfind("arm", 0) == 0; }
 
 /// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit); otherwise a bottom
-/// (trousers, a skirt).
+/// (trousers, a skirt). A sewn pattern says it by its panels: one of a bodice (GarmentCode's
+/// "…torso…") or a sleeve makes a top, whatever the segmentation of its sewn mesh (a hoody's sleeves,
+/// hanging in A-pose, are cut as legs).
 bool is_top(const DressedGarment& g) {
+  if (g.from_pattern)
+    return std::any_of(g.pattern.panels.begin(), g.pattern.panels.end(), [](const std::string& panel) {
+      return panel.find("torso") != std::string::npos || panel.find("sleeve") != std::string::npos;
+    });
   const auto& names = g.mesh.label_names;
   return std::any_of(names.begin(), names.end(), names_sleeves) || std::none_of(names.begin(), names.end(), names_legs);
+}
+
+bool covers_legs(const DressedGarment& g) {
+  if (g.from_pattern)
+    return std::any_of(g.pattern.panels.begin(), g.pattern.panels.end(), [](const std::string& panel) {
+      return panel.find("skirt") != std::string::npos || panel.find("pant") != std::string::npos ||
+             panel.find("leg") != std::string::npos;
+    });
+  const auto& names = g.mesh.label_names;
+  return std::any_of(names.begin(), names.end(), names_legs);
 }
 
 /// The waistband of each bottom among a garment's pieces: a piece with leg or skirt parts, no
@@ -383,7 +399,7 @@ bool is_top(const DressedGarment& g) {
 /// keep the strain limit from ever being met. Returns garment rows.
 std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,
                            const InsideTest& inside, double shoulders) {
-  if (!(band > 0.0)) return {};
+  if (!(band > 0.0) || (g.from_pattern && is_top(g))) return {};  // a sewn top hangs from its shoulders
   std::vector<char> loose(static_cast<std::size_t>(g.mesh.num_vertices()), 1);
   for (int f = 0; f < g.mesh.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) {

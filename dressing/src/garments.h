@@ -63,7 +63,12 @@ bool names_legs(const std::string& part);
 bool names_sleeves(const std::string& part);
 
 /// A garment with sleeves, or with no legs or skirt (a top, a dress, a jumpsuit); otherwise a bottom.
+/// A sewn pattern: a top when one of its panels is a bodice or a sleeve.
 bool is_top(const DressedGarment& g);
+
+/// A garment with legs or a skirt (trousers, a skirt, a suit of top and trousers, a dress): by its
+/// parts' names, or a sewn pattern's panels' ("…skirt…", "…pant…", "…leg…").
+bool covers_legs(const DressedGarment& g);
 
 /// The rows of the waistband of each bottom among a garment's pieces (garments.cpp).
 std::vector<int> waistband(const DressedGarment& g, const Eigen::MatrixX3d& rest, double band, double max_strain,

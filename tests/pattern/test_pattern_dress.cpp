@@ -96,6 +96,25 @@ struct SharedPattern {
 
 void PrintTo(const SharedPattern& p, std::ostream* os) { *os << p.name; }
 
+// Layers inferred for a sewn hoody and a mesh suit of t-shirt and jeans given the other way round:
+// both are tops (the hoody's panels are a bodice and sleeves, though its hanging sleeves are cut as
+// legs), the suit covers the legs and so goes under the hoody, which is graded over it.
+TEST(PatternDress, InferredLayersPutASewnTopOverASuit) {
+  DRESSKIT_REQUIRE_DATA();
+  GarmentFile hoody, suit;
+  hoody.file = MeshFile::file(test::shared_pattern("gc_hoody_mean_specification.json"));
+  suit.file = MeshFile::file(test::data_dir() + "/garments/mh_female_casualsuit01.obj");
+  suit.file.load.units = Units::parse("dm");
+  DressOptions o;
+  o.settle = false;
+  o.infer_layers = true;
+  const DressResult r = dress(MeshFile::file(test::data_dir() + "/bodies/gc_mean_all.obj"), {hoody, suit}, o);
+  ASSERT_EQ(r.garments.size(), 2u);
+  EXPECT_EQ(r.garments[0].name, "mh_female_casualsuit01");
+  EXPECT_EQ(r.garments[1].name, "gc_hoody_mean_specification");
+  EXPECT_EQ(r.layer_crossings, 0);
+}
+
 class PatternDress : public ::testing::TestWithParam<SharedPattern> {};
 
 TEST_P(PatternDress, SewnClosedWornAndAreasKept) {
