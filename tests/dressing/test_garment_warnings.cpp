@@ -45,6 +45,19 @@ TEST(GarmentWarnings, EachProblemIsOneSentenceWithItsFigures) {
   EXPECT_EQ(w[3], "shirt: panel 'back' shrank by 4 % of its flat area");
 }
 
+TEST(GarmentWarnings, APatternWithStitchesLeftOpenSaysHowMany) {
+  DressedGarment g = two_panels(1.0, 0.5);
+  g.name = "shirt";
+  g.pattern.stitch_pairs = 195;
+  g.pattern.sewn_pairs = 178;
+  g.pattern.max_gap = 0.046127;
+  const std::vector<std::string> w = dressed_warnings(g);
+  ASSERT_EQ(w.size(), 1u);
+  EXPECT_EQ(w[0], "shirt: 17 of 195 stitch pairs not sewn, the widest 46.1 mm open");
+  g.pattern.sewn_pairs = 195;
+  EXPECT_TRUE(dressed_warnings(g).empty());
+}
+
 TEST(GarmentWarnings, AMeshGarmentIsComparedWithItselfAsAuthored) {
   DressedGarment g;
   g.name = "elegantsuit";
