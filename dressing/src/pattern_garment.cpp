@@ -4,6 +4,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include <Eigen/Eigenvalues>
@@ -276,13 +277,13 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
                        sewn.stopped + "): the pattern does not sew on this body" +
                        (sewn.moved_by.isZero() ? std::string("; is it placed for another?")
                                                : std::string(" (carried from the body it is placed for)")));
-    s.warnings.push_back(
-        g.file.path + ": stitch " + std::to_string(widest) + " (" +
-        p.edge_name(st.a.panel, st.a.edge) + " to " + p.edge_name(st.b.panel, st.b.edge) +
-        ") is still " + std::to_string(1e3 * sewn.stitch_gap[static_cast<std::size_t>(widest)]) +
-        " mm open after " + std::to_string(sewn.simulated_seconds) + " s of sewing; " +
-        std::to_string(sewn.stitch_pairs - sewn.closed_pairs) + " of " +
-        std::to_string(sewn.stitch_pairs) + " stitch pairs stay unwelded");
+    // How many pairs stay open is the dressed garment's warning (dressed_warnings).
+    char open_mm[32], after[32];
+    std::snprintf(open_mm, sizeof open_mm, "%.3g", 1e3 * sewn.stitch_gap[static_cast<std::size_t>(widest)]);
+    std::snprintf(after, sizeof after, "%.3g", sewn.simulated_seconds);
+    s.warnings.push_back(g.file.path + ": stitch " + std::to_string(widest) + " (" + p.edge_name(st.a.panel, st.a.edge) +
+                         " to " + p.edge_name(st.b.panel, st.b.edge) + ") is still " + open_mm + " mm open after " +
+                         after + " s of sewing");
   }
 }
 

@@ -64,6 +64,12 @@ TEST(PatternCli, BadPatternOneLineExit2NothingWritten) {
   EXPECT_EQ(u.code, 2);
   EXPECT_NE(u.err.find("units_in_meter"), std::string::npos) << u.err;
   EXPECT_FALSE(fs::exists(out));
+  // The pattern given as the output folder: refused as dress refuses it, the file untouched.
+  const auto size = fs::file_size(dir.file("nounits.json"));
+  const CliRun same = run(dir, "pattern " + dir.file("nounits.json") + " -o " + dir.file("nounits.json"));
+  EXPECT_EQ(same.code, 2);
+  EXPECT_NE(same.err.find("nounits.json: the output folder is an input"), std::string::npos) << same.err;
+  EXPECT_EQ(fs::file_size(dir.file("nounits.json")), size);
 }
 
 TEST(PatternCli, UnequalStitchWarnsAndStillCuts) {

@@ -310,8 +310,8 @@ TEST(PatternDressCli, ABadPatternBodyIsRefusedNamingIt) {
   const std::string man = test::data_dir() + "/bodies/mh_man_young_average.obj";  // in dm
   const CliRun tall = run(dir, dress + " --pattern-body " + man);
   EXPECT_EQ(tall.code, 2) << tall.err;
-  EXPECT_NE(tall.err.find(man + ": the pattern's body is 17.5 m tall in units m: give its units "
-                                "(--pattern-body-units)"),
+  EXPECT_NE(tall.err.find(man + ": the pattern's body is 17.5 m tall in units m; with --pattern-body-units dm it "
+                                "would be 1.75 m"),
             std::string::npos)
       << tall.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));

@@ -34,6 +34,7 @@ void PatternCommand::add_to(CLI::App& app) {
 }
 
 int PatternCommand::run() {
+  check_output_folder(output, {path});  // the output folder is the pattern, or cannot be: before any work
   pattern::ReadOptions read;
   read.max_length_ratio = length_ratio;
   const pattern::Pattern p = pattern::read_pattern(path, read);
