@@ -64,6 +64,14 @@ TEST(PatternCli, BadPatternOneLineExit2NothingWritten) {
   EXPECT_EQ(u.code, 2);
   EXPECT_NE(u.err.find("units_in_meter"), std::string::npos) << u.err;
   EXPECT_FALSE(fs::exists(out));
+  // An edge length that is no length: named by the option, exit 2.
+  for (const char* edge : {"-1", "0", "nan"}) {
+    const CliRun e = run(dir, "pattern " + dir.file("bad.json") + " --edge " + edge + " -o " + out);
+    EXPECT_EQ(e.code, 2) << edge;
+    EXPECT_NE(e.err.find("--edge: "), std::string::npos) << e.err;
+    EXPECT_NE(e.err.find("is not a positive length"), std::string::npos) << e.err;
+  }
+  EXPECT_FALSE(fs::exists(out));
   // The pattern given as the output folder: refused as dress refuses it, the file untouched.
   const auto size = fs::file_size(dir.file("nounits.json"));
   const CliRun same = run(dir, "pattern " + dir.file("nounits.json") + " -o " + dir.file("nounits.json"));

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/output_folder.h"
+#include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/pattern/curves.h"
 #include "dresskit/pattern/cut.h"
@@ -22,9 +23,7 @@ void PatternCommand::add_to(CLI::App& app) {
   command->add_option("PATTERN", path, "pattern file (GarmentCode *_specification.json)")
       ->required();
   command->add_option("-o,--output", output, "output directory")->required();
-  command->add_option("--edge", edge, "triangle edge length [m]")
-      ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+  command->add_option("--edge", edge, "triangle edge length [m]")->capture_default_str();
   command
       ->add_option("--length-ratio", length_ratio,
                    "warn about stitched edges whose lengths differ by more than this ratio")
@@ -34,6 +33,8 @@ void PatternCommand::add_to(CLI::App& app) {
 }
 
 int PatternCommand::run() {
+  if (!(edge > 0.0 && edge < 1e3))  // NaN too
+    throw InputError("--edge: " + std::to_string(edge) + " is not a positive length below 1000 m");
   check_output_folder(output, {path});  // the output folder is the pattern, or cannot be: before any work
   pattern::ReadOptions read;
   read.max_length_ratio = length_ratio;
