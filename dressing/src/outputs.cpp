@@ -72,6 +72,15 @@ TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
     quads += ok;
   }
   result.quads.conservativeResize(quads, 4);
+  // Corner texture coordinates (a pattern's flat panels, a file's UV seams) where the faces are the
+  // file's (or the pattern's) as they are.
+  bool same_faces = original.FTC.rows() == original.num_faces() && kept == original.num_faces();
+  for (int f = 0; f < kept && same_faces; ++f)
+    for (int k = 0; k < 3; ++k) same_faces = same_faces && result.F(f, k) == file_vertex(original.F(f, k));
+  if (same_faces) {
+    result.TC = original.TC;
+    result.FTC = original.FTC;
+  }
   return result;
 }
 
@@ -250,6 +259,7 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
   for (const DressedGarment& g : r.garments) {
     TriangleMesh dressed = g.mesh;
     dressed.V = g.dressed;
+    dressed.N.resize(0, 3);  // the file's normals are of its rest shape: the writer takes the dressed shape's
     scene.push_back({g.name, dressed});
     if (g.dressed_outer.rows() == 0) continue;
     dressed.V = g.dressed_outer;

@@ -297,16 +297,38 @@ TriangleMesh load_mesh(const std::string& path, const LoadOptions& options) {
     if (mesh.UV.rows()) mesh.UV.row(row) = g.uvs[i].transpose();
   }
 
-  std::vector<Eigen::Vector3i> tris;
+  // A vertex with two texture coordinates lies on a UV seam: the faces' corners then keep their
+  // own (TriangleMesh::TC, FTC), so that the writers can keep the seam.
+  bool seams = false;
+  for (size_t i = 0; i < g.positions.size() && mesh.UV.rows() && !seams; ++i)
+    seams = mesh.UV.row(to_row[i]) != g.uvs[i].transpose();
+  std::vector<int> tc_row(seams ? g.uvs.size() : 0, -1);
+  std::vector<Eigen::Vector2d> tc;
+  std::vector<Eigen::Vector3i> tris, tri_tc;
   std::vector<Eigen::Vector4i> quads;
   for (const auto& polygon : g.polygons) {
-    std::vector<int> p(polygon.size());
-    for (size_t k = 0; k < p.size(); ++k) p[k] = to_row[polygon[k]];
+    std::vector<int> p(polygon.size()), t(polygon.size(), 0);
+    for (size_t k = 0; k < p.size(); ++k) {
+      p[k] = to_row[polygon[k]];
+      if (!seams) continue;
+      int& row = tc_row[static_cast<size_t>(polygon[k])];
+      if (row < 0) row = static_cast<int>(tc.size()), tc.push_back(g.uvs[static_cast<size_t>(polygon[k])]);
+      t[k] = row;
+    }
     if (p.size() == 4) quads.emplace_back(p[0], p[1], p[2], p[3]);
-    for (size_t k = 1; k + 1 < p.size(); ++k) tris.emplace_back(p[0], p[k], p[k + 1]);  // fan
+    for (size_t k = 1; k + 1 < p.size(); ++k) {  // fan
+      tris.emplace_back(p[0], p[k], p[k + 1]);
+      tri_tc.emplace_back(t[0], t[k], t[k + 1]);
+    }
   }
   mesh.F.resize(static_cast<Eigen::Index>(tris.size()), 3);
   for (size_t f = 0; f < tris.size(); ++f) mesh.F.row(static_cast<Eigen::Index>(f)) = tris[f].transpose();
+  if (seams) {
+    mesh.TC.resize(static_cast<Eigen::Index>(tc.size()), 2);
+    for (size_t r = 0; r < tc.size(); ++r) mesh.TC.row(static_cast<Eigen::Index>(r)) = tc[r].transpose();
+    mesh.FTC.resize(mesh.F.rows(), 3);
+    for (size_t f = 0; f < tri_tc.size(); ++f) mesh.FTC.row(static_cast<Eigen::Index>(f)) = tri_tc[f].transpose();
+  }
   mesh.quads.resize(static_cast<Eigen::Index>(quads.size()), 4);
   for (size_t q = 0; q < quads.size(); ++q) mesh.quads.row(static_cast<Eigen::Index>(q)) = quads[q].transpose();
 

@@ -5,6 +5,7 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -72,8 +73,8 @@ void append_int(std::string& out, long value) {
 
 
 // The faces to write: each quad once (when both of its triangles are in F), the other triangles as
-// they are.
-std::vector<std::vector<int>> output_polygons(const TriangleMesh& m) {
+// they are; with `texture`, each polygon's corner texture coordinate rows (TriangleMesh::FTC).
+std::vector<std::vector<int>> output_polygons(const TriangleMesh& m, std::vector<std::vector<int>>* texture = nullptr) {
   std::map<std::array<int, 3>, int> quad_of_triangle;
   const auto tri_key = detail::directed_triangle_key;
   for (int q = 0; q < m.quads.rows(); ++q) {
@@ -91,17 +92,40 @@ std::vector<std::vector<int>> output_polygons(const TriangleMesh& m) {
     }
   }
   std::vector<std::vector<int>> polygons;
+  std::vector<std::array<int, 2>> quad_faces(m.quads.rows(), {-1, -1});  // each quad's two triangles
+  for (int f = 0; f < m.num_faces(); ++f)
+    if (face_quad[f] >= 0) quad_faces[face_quad[f]][quad_faces[face_quad[f]][0] < 0 ? 0 : 1] = f;
   std::vector<bool> written(m.quads.rows(), false);
+  // A quad corner's texture coordinate: from whichever of its two triangles has that corner.
+  auto corner_texture = [&](int f, int g, int v) {
+    for (int face : {f, g})
+      for (int k = 0; k < 3; ++k)
+        if (m.F(face, k) == v) return m.FTC(face, k);
+    return 0;
+  };
+  if (texture) texture->clear();
   for (int f = 0; f < m.num_faces(); ++f) {
     const int q = face_quad[f];
     if (q >= 0 && found[q] == 2) {
-      if (!written[q]) polygons.push_back({m.quads(q, 0), m.quads(q, 1), m.quads(q, 2), m.quads(q, 3)});
+      if (written[q]) continue;
       written[q] = true;
+      polygons.push_back({m.quads(q, 0), m.quads(q, 1), m.quads(q, 2), m.quads(q, 3)});
+      if (texture) {
+        texture->emplace_back();
+        for (int v : polygons.back()) texture->back().push_back(corner_texture(quad_faces[q][0], quad_faces[q][1], v));
+      }
     } else {
       polygons.push_back({m.F(f, 0), m.F(f, 1), m.F(f, 2)});
+      if (texture) texture->push_back({m.FTC(f, 0), m.FTC(f, 1), m.FTC(f, 2)});
     }
   }
   return polygons;
+}
+
+// Corner texture coordinates that fit the faces (a mesh whose faces changed after they were set has
+// none).
+bool has_corner_texture(const TriangleMesh& m) {
+  return m.FTC.rows() > 0 && m.FTC.rows() == m.num_faces() && m.FTC.minCoeff() >= 0 && m.FTC.maxCoeff() < m.TC.rows();
 }
 
 std::string obj_text(const TriangleMesh& m) {
@@ -112,9 +136,12 @@ std::string obj_text(const TriangleMesh& m) {
     for (int k = 0; k < 3; ++k) (out += ' ', append_number(out, m.V(i, k)));
     out += '\n';
   }
-  for (int i = 0; i < m.UV.rows(); ++i) {
+  // Corner texture coordinates replace the per-vertex ones.
+  const bool corners = has_corner_texture(m);
+  const Eigen::MatrixX2d& texture = corners ? m.TC : m.UV;
+  for (int i = 0; i < texture.rows(); ++i) {
     out += "vt";
-    for (int k = 0; k < 2; ++k) (out += ' ', append_number(out, m.UV(i, k)));
+    for (int k = 0; k < 2; ++k) (out += ' ', append_number(out, texture(i, k)));
     out += '\n';
   }
   for (int i = 0; i < m.N.rows(); ++i) {
@@ -122,17 +149,24 @@ std::string obj_text(const TriangleMesh& m) {
     for (int k = 0; k < 3; ++k) (out += ' ', append_number(out, m.N(i, k)));
     out += '\n';
   }
-  const bool uv = m.UV.rows() > 0, n = m.N.rows() > 0;
-  for (const auto& polygon : output_polygons(m)) {
+  const bool n = m.N.rows() > 0;
+  auto corner = [&](int v, int t) {
+    out += ' ';
+    append_int(out, v + 1);
+    if (t >= 0 || n) {
+      out += '/';
+      if (t >= 0) append_int(out, t + 1);
+      if (n) (out += '/', append_int(out, v + 1));
+    }
+  };
+  const bool uv = m.UV.rows() > 0;
+  std::vector<std::vector<int>> corner_rows;
+  const auto polygons = output_polygons(m, corners ? &corner_rows : nullptr);
+  for (std::size_t p = 0; p < polygons.size(); ++p) {
     out += 'f';
-    for (int v : polygon) {
-      out += ' ';
-      append_int(out, v + 1);
-      if (uv || n) {
-        out += '/';
-        if (uv) append_int(out, v + 1);
-        if (n) (out += '/', append_int(out, v + 1));
-      }
+    for (std::size_t k = 0; k < polygons[p].size(); ++k) {
+      const int v = polygons[p][k];
+      corner(v, corners ? corner_rows[p][k] : uv ? v : -1);
     }
     out += '\n';
   }
@@ -203,25 +237,51 @@ std::string stl_bytes(const TriangleMesh& m) {
   return out;
 }
 
-// One mesh of an assimp scene: positions and normals in single precision, colours from labels.
+// One mesh of an assimp scene: positions, normals and texture coordinates in single precision,
+// colours from labels. With corner texture coordinates, a vertex is written once for each of its
+// texture coordinates (glTF has attributes per vertex only); its normal stays the welded one's.
 aiMesh* assimp_mesh(const TriangleMesh& m, const std::string& name) {
   aiMesh* mesh = new aiMesh();
   mesh->mName = aiString(name);
   mesh->mMaterialIndex = 0;
   mesh->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
-  mesh->mNumVertices = static_cast<unsigned>(m.num_vertices());
+  // The written vertices: (vertex, texture coordinate row or -1), and each face corner's.
+  std::vector<std::pair<int, int>> written;
+  Eigen::MatrixX3i corners = m.F;
+  const bool corner_texture = has_corner_texture(m);
+  if (corner_texture) {
+    std::map<std::pair<int, int>, int> index;
+    for (int f = 0; f < m.num_faces(); ++f)
+      for (int k = 0; k < 3; ++k) {
+        const auto key = std::make_pair(m.F(f, k), m.FTC(f, k));
+        const auto [it, fresh] = index.emplace(key, static_cast<int>(written.size()));
+        if (fresh) written.push_back(key);
+        corners(f, k) = it->second;
+      }
+  } else {
+    for (int i = 0; i < m.num_vertices(); ++i) written.emplace_back(i, m.UV.rows() > 0 ? i : -1);
+  }
+  const Eigen::MatrixX2d& texture = corner_texture ? m.TC : m.UV;
+  mesh->mNumVertices = static_cast<unsigned>(written.size());
   mesh->mVertices = new aiVector3D[mesh->mNumVertices];
   const Eigen::MatrixX3d N = m.N.rows() ? m.N : vertex_normals(m.V, m.F);
   mesh->mNormals = new aiVector3D[mesh->mNumVertices];
   if (m.has_labels()) mesh->mColors[0] = new aiColor4D[mesh->mNumVertices];
-  for (unsigned i = 0; i < mesh->mNumVertices; ++i) {
-    mesh->mVertices[i] = aiVector3D(static_cast<float>(m.V(i, 0)), static_cast<float>(m.V(i, 1)),
+  if (texture.rows() > 0) {
+    mesh->mTextureCoords[0] = new aiVector3D[mesh->mNumVertices];
+    mesh->mNumUVComponents[0] = 2;
+  }
+  for (unsigned w = 0; w < mesh->mNumVertices; ++w) {
+    const auto [i, t] = written[w];
+    mesh->mVertices[w] = aiVector3D(static_cast<float>(m.V(i, 0)), static_cast<float>(m.V(i, 1)),
                                     static_cast<float>(m.V(i, 2)));
-    mesh->mNormals[i] = aiVector3D(static_cast<float>(N(i, 0)), static_cast<float>(N(i, 1)),
+    mesh->mNormals[w] = aiVector3D(static_cast<float>(N(i, 0)), static_cast<float>(N(i, 1)),
                                    static_cast<float>(N(i, 2)));
+    if (t >= 0)
+      mesh->mTextureCoords[0][w] = aiVector3D(static_cast<float>(texture(t, 0)), static_cast<float>(texture(t, 1)), 0.f);
     if (m.has_labels()) {
       const Eigen::Vector3i c = label_colour(m.labels(i));
-      mesh->mColors[0][i] = aiColor4D(c(0) / 255.f, c(1) / 255.f, c(2) / 255.f, 1.f);
+      mesh->mColors[0][w] = aiColor4D(c(0) / 255.f, c(1) / 255.f, c(2) / 255.f, 1.f);
     }
   }
   mesh->mNumFaces = static_cast<unsigned>(m.num_faces());
@@ -229,7 +289,7 @@ aiMesh* assimp_mesh(const TriangleMesh& m, const std::string& name) {
   for (unsigned f = 0; f < mesh->mNumFaces; ++f) {
     mesh->mFaces[f].mNumIndices = 3;
     mesh->mFaces[f].mIndices = new unsigned[3];
-    for (int k = 0; k < 3; ++k) mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(m.F(f, k));
+    for (int k = 0; k < 3; ++k) mesh->mFaces[f].mIndices[k] = static_cast<unsigned>(corners(f, k));
   }
   return mesh;
 }

@@ -57,6 +57,14 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& what) {
   if (mesh.UV.size() > 0 && !mesh.UV.allFinite()) {
     throw InputError(what + ": a texture coordinate is not finite");
   }
+  if (mesh.FTC.rows() != 0 || mesh.TC.rows() != 0) {
+    if (mesh.FTC.rows() != mesh.num_faces())
+      throw InputError(what + ": corner texture coordinates for " + std::to_string(mesh.FTC.rows()) + " faces of " +
+                       std::to_string(mesh.num_faces()));
+    if (mesh.FTC.minCoeff() < 0 || mesh.FTC.maxCoeff() >= mesh.TC.rows())
+      throw InputError(what + ": a corner refers to a texture coordinate that the mesh does not have");
+    if (!mesh.TC.allFinite()) throw InputError(what + ": a texture coordinate is not finite");
+  }
   if (mesh.N.size() > 0 && !mesh.N.allFinite()) {
     throw InputError(what + ": a vertex normal is not finite");
   }

@@ -144,6 +144,78 @@ TEST(Io, ObjVertexOrderMapSurvivesUvSeamsAndUnusedVertices) {
   EXPECT_EQ(m.F.row(2), Eigen::RowVector3i(1, 2, 4));
   ASSERT_EQ(m.UV.rows(), 5);
   EXPECT_TRUE(m.UV.row(4).isApprox(Eigen::RowVector2d(0, 1)));
+  // The seam's corners keep their own coordinates, also through a save and a load.
+  ASSERT_EQ(m.FTC.rows(), 3);
+  const auto corner = [](const TriangleMesh& mesh, int f, int k) -> Eigen::RowVector2d {
+    return mesh.TC.row(mesh.FTC(f, k));
+  };
+  EXPECT_EQ(corner(m, 0, 1), Eigen::RowVector2d(1, 0));
+  EXPECT_EQ(corner(m, 1, 1), Eigen::RowVector2d(0.5, 0.5));
+  EXPECT_EQ(corner(m, 2, 0), Eigen::RowVector2d(0.25, 0.25));
+  save_mesh(m, dir.file("again.obj"));
+  const TriangleMesh again = load_mesh(dir.file("again.obj"));
+  ASSERT_EQ(again.F, m.F);
+  ASSERT_EQ(again.FTC.rows(), 3);
+  for (int f = 0; f < 3; ++f)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(corner(again, f, k), corner(m, f, k)) << f << " " << k;
+  // Two quads with a seam between them are written back as they were read.
+  const std::string quads = "f 1/1 2/2 5/3 4/4\nf 2/5 3/6 6/7 5/8\n";
+  write_text(dir.file("quads.obj"),
+             "v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nv 1 1 0\nv 2 1 0\n"
+             "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 3 0\nvt 4 0\nvt 4 1\nvt 3 1\n" + quads);
+  save_mesh(load_mesh(dir.file("quads.obj")), dir.file("quads_again.obj"));
+  std::ifstream in(dir.file("quads_again.obj"));
+  std::string faces;
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("f ", 0) == 0) faces += line + "\n";
+  EXPECT_EQ(faces, quads);
+}
+
+// Two triangles that share an edge but not its texture coordinates (a UV seam, as between a
+// garment's panels): OBJ keeps one `v` per vertex and one `vt` per coordinate; glTF, with attributes
+// per vertex only, writes the seam's vertices once for each of their coordinates.
+TEST(Io, CornerTextureCoordinatesKeepTheirSeam) {
+  test::TempDir dir;
+  TriangleMesh m = fixtures::grid(1, 1, 1.0);  // faces (0, 1, 3) and (0, 3, 2)
+  m.TC.resize(6, 2);
+  m.TC << 0, 0, 1, 0, 1, 1, 2, 0, 3, 1, 2, 1;
+  m.FTC.resize(2, 3);
+  m.FTC << 0, 1, 2, 3, 4, 5;
+  save_mesh(m, dir.file("seam.obj"));
+  std::ifstream in(dir.file("seam.obj"));
+  std::vector<std::string> faces;
+  int vertices = 0, coordinates = 0;
+  for (std::string line; std::getline(in, line);) {
+    vertices += line.rfind("v ", 0) == 0;
+    coordinates += line.rfind("vt ", 0) == 0;
+    if (line.rfind("f ", 0) == 0) faces.push_back(line);
+  }
+  EXPECT_EQ(vertices, 4);
+  EXPECT_EQ(coordinates, 6);
+  ASSERT_EQ(faces.size(), 2u);
+  EXPECT_EQ(faces[0], "f 1/1 2/2 4/3");
+  EXPECT_EQ(faces[1], "f 1/4 4/5 3/6");
+  const TriangleMesh obj = load_mesh(dir.file("seam.obj"));
+  EXPECT_EQ(obj.V, m.V);
+  EXPECT_EQ(obj.F, m.F);
+
+  save_mesh(m, dir.file("seam.glb"));
+  const TriangleMesh glb = load_mesh(dir.file("seam.glb"));
+  ASSERT_EQ(glb.num_vertices(), 6);  // vertices 0 and 3 twice, with their two coordinates each
+  ASSERT_EQ(glb.UV.rows(), 6);
+  // Every written vertex is a corner of m: its position and its coordinate together.
+  for (int w = 0; w < 6; ++w) {
+    bool found = false;
+    for (int f = 0; f < 2; ++f)
+      for (int k = 0; k < 3; ++k)
+        found = found || (glb.V.row(w).isApprox(m.V.row(m.F(f, k)), 1e-6) &&
+                          (glb.UV.row(w) - m.TC.row(m.FTC(f, k))).norm() < 1e-6);
+    EXPECT_TRUE(found) << "written vertex " << w;
+  }
+  EXPECT_NEAR(analyse_topology(glb).area, 1.0, 1e-6);
+  // Corners that name a coordinate the mesh does not have are refused.
+  m.FTC(1, 2) = 6;
+  EXPECT_THROW(validate_mesh(m, "bad"), InputError);
 }
 
 TEST(Io, SaveLeavesNothingWhenTheFolderIsMissing) {

@@ -14,6 +14,13 @@ struct TriangleMesh {
   Eigen::MatrixX3i F;  ///< #F×3 vertex indices per triangle, counter-clockwise seen from the outside
   Eigen::MatrixX3d N;  ///< #V×3 unit vertex normals, or empty
   Eigen::MatrixX2d UV;  ///< #V×2 texture coordinates, or empty
+  /// Texture coordinates per face corner, for a texture with seams (a garment sewn from panels:
+  /// each panel's flat layout): corner k of face f has TC.row(FTC(f, k)). Both empty, or FTC #F×3.
+  /// Where set, the writers use them instead of UV (OBJ `vt` with `f v/vt`; glTF and FBX split a
+  /// vertex whose corners differ). Meshes made anew from this one (cleanup, select_vertices) do
+  /// not carry them.
+  Eigen::MatrixX2d TC;
+  Eigen::MatrixX3i FTC;
   /// #V per-vertex part labels (index into label_names, -1 = unlabelled), or empty.
   Eigen::VectorXi labels;
   std::vector<std::string> label_names;
