@@ -207,18 +207,32 @@ TriangleMesh placed_mesh(const Pattern& pattern, const CutPattern& cut) {
   return m;
 }
 
-TriangleMesh flat_mesh(const Pattern& pattern, const CutPattern& cut, double gap) {
-  TriangleMesh m = placed_mesh(pattern, cut);
-  double x = 0.0;
-  for (int p = 0; p < int(pattern.panels.size()); ++p) {
+Eigen::MatrixX2d texture_coordinates(const Pattern& pattern, const CutPattern& cut, double gap) {
+  const int panels = int(pattern.panels.size());
+  Eigen::VectorXd turn = Eigen::VectorXd::Zero(panels);  // twice each panel's signed area
+  for (Eigen::Index f = 0; f < cut.faces.rows(); ++f) {
+    const Eigen::RowVector2d a = cut.flat.row(cut.faces(f, 0));
+    const Eigen::RowVector2d ab = cut.flat.row(cut.faces(f, 1)) - a, ac = cut.flat.row(cut.faces(f, 2)) - a;
+    turn[cut.panel_of_face[f]] += ab.x() * ac.y() - ab.y() * ac.x();
+  }
+  Eigen::MatrixX2d uv(cut.flat.rows(), 2);
+  double u = 0.0;
+  for (int p = 0; p < panels; ++p) {
+    const double sign = turn[p] < 0.0 ? -1.0 : 1.0;
     double lo = 1e30, hi = -1e30;
     for (Eigen::Index v = 0; v < cut.flat.rows(); ++v)
-      if (cut.panel_of_vertex[v] == p)
-        lo = std::min(lo, cut.flat(v, 0)), hi = std::max(hi, cut.flat(v, 0));
+      if (cut.panel_of_vertex[v] == p) lo = std::min(lo, sign * cut.flat(v, 0)), hi = std::max(hi, sign * cut.flat(v, 0));
     for (Eigen::Index v = 0; v < cut.flat.rows(); ++v)
-      if (cut.panel_of_vertex[v] == p) m.V.row(v) << cut.flat(v, 0) - lo + x, cut.flat(v, 1), 0.0;
-    x += hi - lo + gap;
+      if (cut.panel_of_vertex[v] == p) uv.row(v) << sign * cut.flat(v, 0) - lo + u, cut.flat(v, 1);
+    if (hi >= lo) u += hi - lo + gap;
   }
+  return uv;
+}
+
+TriangleMesh flat_mesh(const Pattern& pattern, const CutPattern& cut, double gap) {
+  TriangleMesh m = placed_mesh(pattern, cut);
+  m.V.leftCols<2>() = texture_coordinates(pattern, cut, gap);
+  m.V.col(2).setZero();
   return m;
 }
 

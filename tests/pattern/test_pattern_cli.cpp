@@ -42,6 +42,21 @@ TEST(PatternCli, WritesPictureMeshesAndSummary) {
   }
   EXPECT_GT(area, 0.5);  // a short-sleeved shirt for an adult: 0.64 m² of fabric
   EXPECT_LT(area, 0.8);
+  // The flat panels, each seen from the garment's outside: every face towards +z, of the panels'
+  // triangles' area.
+  const TriangleMesh flat = load_mesh(out + "/gc_shirt_mean_specification.flat.obj");
+  double flat_area = 0.0;
+  int backwards = 0;
+  for (int f = 0; f < flat.num_faces(); ++f) {
+    const Eigen::Vector3d a = flat.V.row(flat.F(f, 0)), b = flat.V.row(flat.F(f, 1)), c = flat.V.row(flat.F(f, 2));
+    const double z = (b - a).cross(c - a).z();
+    flat_area += 0.5 * z;
+    backwards += z <= 0.0;
+  }
+  EXPECT_EQ(backwards, 0);
+  double triangles = 0.0;
+  for (const auto& panel : j["panels"]) triangles += panel["triangle_area_m2"].get<double>();
+  EXPECT_NEAR(flat_area, triangles, 1e-6 * triangles);
 }
 
 TEST(PatternCli, BadPatternOneLineExit2NothingWritten) {

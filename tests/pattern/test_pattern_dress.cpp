@@ -6,12 +6,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "dresskit/cloth/self_collision.h"
 #include "dresskit/dressing/dress.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/pattern/cut.h"
+#include "dresskit/pattern/pattern.h"
 #include "dresskit/testing/winding_number.h"
 #include "pattern_fixtures.h"
 #include "tools/cli_run.h"
@@ -226,6 +231,55 @@ TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
   EXPECT_EQ(g["panels"][0]["name"], "left_btorso");
   const TriangleMesh dressed = load_mesh(out + "/" + stem + ".dressed.obj");
   EXPECT_EQ(dressed.num_faces(), g["pattern"]["triangles"].get<int>());
+  // Texture coordinates: the flat pattern, one per cut vertex (the panels' own, also where seams
+  // join them), every triangle the right way round seen from outside, of its flat shape: the
+  // triangles' total area in the texture is the panels', and each dressed edge is as long as its
+  // texture edge within the fabric's strain.
+  {
+    const dresskit::pattern::Pattern p =
+        dresskit::pattern::read_pattern(test::shared_pattern("gc_hoody_mean_specification.json"));
+    const dresskit::pattern::CutPattern cut = dresskit::pattern::cut_pattern(p);
+    std::ifstream in(out + "/" + stem + ".dressed.obj");
+    std::vector<Eigen::Vector2d> tc;
+    std::vector<std::array<int, 6>> corners;  // v, vt per corner
+    for (std::string line; std::getline(in, line);) {
+      std::istringstream words(line);
+      std::string key;
+      words >> key;
+      if (key == "vt") {
+        Eigen::Vector2d t;
+        words >> t.x() >> t.y();
+        tc.push_back(t);
+      } else if (key == "f") {
+        std::array<int, 6> c{};
+        char slash;
+        for (int k = 0; k < 3; ++k) words >> c[2 * k] >> slash >> c[2 * k + 1];
+        ASSERT_FALSE(words.fail()) << line;
+        corners.push_back(c);
+      }
+    }
+    EXPECT_EQ(tc.size(), std::size_t(cut.flat.rows()));
+    ASSERT_EQ(corners.size(), std::size_t(dressed.num_faces()));
+    double area = 0.0;
+    int backwards = 0;
+    std::vector<double> stretch;
+    for (const auto& c : corners) {
+      const Eigen::Vector2d a = tc[c[1] - 1], b = tc[c[3] - 1], d = tc[c[5] - 1];
+      const double twice = (b - a).x() * (d - a).y() - (b - a).y() * (d - a).x();
+      area += 0.5 * twice;
+      backwards += twice <= 0.0;
+      for (int k = 0; k < 3; ++k) {
+        const int u = c[2 * k] - 1, v = c[2 * ((k + 1) % 3)] - 1;
+        const double flat = (tc[c[2 * ((k + 1) % 3) + 1] - 1] - tc[c[2 * k + 1] - 1]).norm();
+        stretch.push_back((dressed.V.row(u) - dressed.V.row(v)).norm() / flat - 1.0);
+      }
+    }
+    EXPECT_EQ(backwards, 0);
+    EXPECT_NEAR(area, cut.triangle_area.sum(), 0.002 * cut.triangle_area.sum());
+    std::sort(stretch.begin(), stretch.end());
+    EXPECT_LT(std::abs(stretch[stretch.size() / 2]), 0.05);  // median
+    EXPECT_LT(stretch.back(), 0.12);                          // within the length limits
+  }
   // A bad pattern: exit 2, one line naming the stitch, nothing written.
   write(dir.file("bad.json"),
         test::two_panel_pattern(

@@ -54,7 +54,12 @@ CutPattern cut_pattern(const Pattern& pattern, const CutOptions& options = {});
 
 /// The cut panels as one mesh in 3D [m] (separate pieces; labels = panels, named).
 mesh::TriangleMesh placed_mesh(const Pattern& pattern, const CutPattern& cut);
-/// The cut panels flat, each in its panel's plane (z = 0), laid side by side along x [m].
+/// Texture coordinates of the cut vertices (#V×2) [m]: each panel flat and seen from the side its
+/// faces point to (mirrored along u where its outline turns clockwise in its plane, so that a
+/// texture reads the right way round on the garment's outside), laid side by side along u with
+/// `gap` between panels, v as the panel's y.
+Eigen::MatrixX2d texture_coordinates(const Pattern& pattern, const CutPattern& cut, double gap = 0.05);
+/// The cut panels flat (z = 0) as texture_coordinates lays them out: every face towards +z [m].
 mesh::TriangleMesh flat_mesh(const Pattern& pattern, const CutPattern& cut, double gap = 0.05);
 
 }  // namespace dresskit::pattern
