@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <map>
 #include <sstream>
 
 #include "dresskit/mesh/errors.h"
@@ -297,6 +298,8 @@ Pattern parse_pattern(const std::string& text, const std::string& file,
   if (pj.contains("stitches")) {
     const json& ss = pj.at("stitches");
     if (!ss.is_array()) c.fail("pattern.stitches", "must be an array");
+    // The stitch that first sews each edge (panel, edge), by index in the file.
+    std::map<std::pair<int, int>, std::size_t> sewn_by;
     for (std::size_t i = 0; i < ss.size(); ++i) {
       const std::string where = "stitch " + std::to_string(i);
       const json& s = ss[i];
@@ -312,6 +315,22 @@ Pattern parse_pattern(const std::string& text, const std::string& file,
       }
       if (st.a.panel == st.b.panel && st.a.edge == st.b.edge)
         c.fail(where, "sews an edge to itself");
+      // A stitch listed twice, or an edge sewn by two stitches (a seam of three layers), is sewn
+      // as given (stitches keep the file's numbers), and said.
+      const auto first_a = sewn_by.find({st.a.panel, st.a.edge}), first_b = sewn_by.find({st.b.panel, st.b.edge});
+      if (first_a != sewn_by.end() && first_b != sewn_by.end() && first_a->second == first_b->second) {
+        pattern.warnings.push_back(file + ": " + where + " repeats stitch " + std::to_string(first_a->second) +
+                                   " (" + pattern.edge_name(st.a.panel, st.a.edge) + " to " +
+                                   pattern.edge_name(st.b.panel, st.b.edge) + ")");
+      } else {
+        for (const auto& [side, first] : {std::pair{st.a, first_a}, std::pair{st.b, first_b}})
+          if (first != sewn_by.end())
+            pattern.warnings.push_back(file + ": " + where + ": " + pattern.edge_name(side.panel, side.edge) +
+                                       " is also sewn by stitch " + std::to_string(first->second) +
+                                       " (a seam of three layers)");
+      }
+      sewn_by.emplace(std::pair{st.a.panel, st.a.edge}, i);
+      sewn_by.emplace(std::pair{st.b.panel, st.b.edge}, i);
       const double la = edge_length(pattern.panels[st.a.panel], st.a.edge);
       const double lb = edge_length(pattern.panels[st.b.panel], st.b.edge);
       if (std::max(la, lb) > options.max_length_ratio * std::min(la, lb)) {

@@ -181,6 +181,35 @@ TEST(PatternReader, UnequalStitchedEdgesWarnNamingBoth) {
           .warnings.empty());
 }
 
+TEST(PatternReader, RepeatedStitchesAndThreeLayerSeamsAreSaid) {
+  const std::string front1_back3 = R"([{"panel": "front", "edge": 1}, {"panel": "back", "edge": 3}])";
+  // The same stitch twice, the second time from the other side.
+  const Pattern twice = parse_pattern(
+      test::two_panel_pattern("{\"endpoints\": [1, 2]}",
+                              "[" + front1_back3 + R"(, [{"panel": "back", "edge": 3}, {"panel": "front", "edge": 1}]])"),
+      "twice.json");
+  ASSERT_EQ(twice.warnings.size(), 1u);
+  EXPECT_EQ(twice.warnings[0], "twice.json: stitch 1 repeats stitch 0 (panel 'back' edge 3 to panel 'front' edge 1)");
+  EXPECT_EQ(twice.stitches.size(), 2u);  // numbered as in the file
+  // Front edge 1 sewn to the back's edges 3 and 1: a seam of three layers.
+  const Pattern three = parse_pattern(
+      test::two_panel_pattern("{\"endpoints\": [1, 2]}",
+                              "[" + front1_back3 + R"(, [{"panel": "back", "edge": 1}, {"panel": "front", "edge": 1}]])"),
+      "three.json");
+  ASSERT_EQ(three.warnings.size(), 1u);
+  EXPECT_EQ(three.warnings[0],
+            "three.json: stitch 1: panel 'front' edge 1 is also sewn by stitch 0 (a seam of three layers)");
+  // The shared patterns have neither.
+  for (const char* f : {"gc_shirt_mean_specification.json", "gc_hoody_mean_specification.json",
+                        "gc_dress_pencil_specification.json"}) {
+    DRESSKIT_REQUIRE_DATA();
+    for (const std::string& w : read_pattern(test::shared_pattern(f)).warnings) {
+      EXPECT_EQ(w.find("repeats"), std::string::npos) << w;
+      EXPECT_EQ(w.find("three layers"), std::string::npos) << w;
+    }
+  }
+}
+
 TEST(PatternReader, OpenOutlineAndBadEndpointNamed) {
   EXPECT_NE(
       error_of(test::two_panel_pattern("{\"endpoints\": [1, 3]}")).find("panel 'front' edge 1"),

@@ -71,7 +71,8 @@ struct Pattern {
   double units_in_meter = 100.0;  ///< the file's unit: this many per metre (cm: 100)
   std::vector<Panel> panels;      ///< in the file's `panel_order` when it has one
   std::vector<Stitch> stitches;
-  /// One line each: stitched edges whose lengths differ by more than ReadOptions::max_length_ratio.
+  /// One line each: stitched edges whose lengths differ by more than ReadOptions::max_length_ratio;
+  /// a stitch that repeats another; an edge sewn by two stitches.
   std::vector<std::string> warnings;
 
   int panel_index(const std::string& name) const;  ///< −1 when there is none of that name
