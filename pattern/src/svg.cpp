@@ -1,16 +1,22 @@
 #include "dresskit/pattern/svg.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/pattern/curves.h"
 
 namespace dresskit::pattern {
 namespace {
+
+// Label sizes [px]: a sans-serif character's width at font size 12 (edge labels) and 14 (panel
+// names), and a line's height.
+constexpr double kLabelCharWidth = 7.0, kNameCharWidth = 8.0, kLabelHeight = 14.0;
 
 std::string escape(const std::string& s) {
   std::string out;
@@ -116,6 +122,11 @@ std::string pattern_svg(const Pattern& pattern, const SvgOptions& o) {
     }
     svg << "\"/>\n";
     const double area = polygon_area(outline);
+    // The labels' boxes so far [px], the panel's name at its centre first: an edge label goes
+    // where it overlaps none of them.
+    const Eigen::Vector2d centre = px(p, outline.colwise().mean().transpose());
+    const Eigen::Vector2d name_half(0.5 * kNameCharWidth * double(panel.name.size()), 0.5 * kLabelHeight);
+    std::vector<Eigen::AlignedBox2d> labels{{centre - name_half, centre + name_half}};
     for (std::size_t e = 0; e < panel.edges.size(); ++e) {
       const int s = stitch_of[p][e];
       const std::string colour = s >= 0 ? stitch_colour(s) : "#222222";
@@ -131,28 +142,41 @@ std::string pattern_svg(const Pattern& pattern, const SvgOptions& o) {
       svg << "\"><title>" << escape(pattern.edge_name(int(p), int(e)));
       if (s >= 0) svg << ", stitch " << s;
       svg << "</title></polyline>\n";
-      // The edge's number inside the panel beside its middle; a stitched edge's number also names
-      // its stitch, and a dot marks the edge's start.
-      const Eigen::Vector2d mid = edge_point(panel, int(e), 0.5);
-      const Eigen::Vector2d a = edge_point(panel, int(e), 0.49),
-                            b = edge_point(panel, int(e), 0.51);
-      Eigen::Vector2d inward(-(b - a).y(), (b - a).x());
-      inward *= (area >= 0 ? 1.0 : -1.0) / std::max(inward.norm(), 1e-12);
-      const Eigen::Vector2d t = px(p, mid + 0.025 * inward);
+      // The edge's number inside the panel beside its middle (where short edges crowd, further in
+      // or further along the edge, so that labels do not overlap); a stitched edge's number also
+      // names its stitch, and a dot marks the edge's start.
+      const std::string label = std::to_string(e) + (s >= 0 ? " (s" + std::to_string(s) + ")" : "");
+      const Eigen::Vector2d half(0.5 * kLabelCharWidth * double(label.size()) + 2.0, 0.5 * kLabelHeight);
+      auto inward_at = [&](double along) {
+        const Eigen::Vector2d a = edge_point(panel, int(e), along - 0.01),
+                              b = edge_point(panel, int(e), along + 0.01);
+        Eigen::Vector2d n(-(b - a).y(), (b - a).x());
+        return Eigen::Vector2d(n * (area >= 0 ? 1.0 : -1.0) / std::max(n.norm(), 1e-12));
+      };
+      Eigen::Vector2d t = px(p, edge_point(panel, int(e), 0.5) + 0.025 * inward_at(0.5));
+      bool placed = false;
+      for (int depth = 0; depth < 10 && !placed; ++depth)
+        for (const double along : {0.5, 0.3, 0.7, 0.15, 0.85}) {
+          const Eigen::Vector2d q =
+              px(p, edge_point(panel, int(e), along) + (0.025 + 0.03 * depth) * inward_at(along));
+          const Eigen::AlignedBox2d box(q - half, q + half);
+          if (std::none_of(labels.begin(), labels.end(),
+                           [&](const Eigen::AlignedBox2d& l) { return l.intersects(box); })) {
+            t = q, placed = true;
+            break;
+          }
+        }
+      labels.emplace_back(t - half, t + half);
       svg << "<text x=\"" << t.x() << "\" y=\"" << t.y()
           << "\" font-size=\"12\" text-anchor=\"middle\" "
-          << "dominant-baseline=\"middle\" fill=\"" << colour << "\">" << e;
-      if (s >= 0) svg << " (s" << s << ")";
-      svg << "</text>\n";
+          << "dominant-baseline=\"middle\" fill=\"" << colour << "\">" << label << "</text>\n";
       if (s >= 0) {
-        const Eigen::Vector2d start = px(p, edge_point(panel, int(e), 0.0) + 0.012 * inward);
+        const Eigen::Vector2d start = px(p, edge_point(panel, int(e), 0.0) + 0.012 * inward_at(0.5));
         svg << "<circle cx=\"" << start.x() << "\" cy=\"" << start.y() << "\" r=\"3\" fill=\""
             << colour << "\"/>\n";
       }
     }
-    Eigen::Vector2d centre = outline.colwise().mean().transpose();
-    const Eigen::Vector2d c = px(p, centre);
-    svg << "<text x=\"" << c.x() << "\" y=\"" << c.y()
+    svg << "<text x=\"" << centre.x() << "\" y=\"" << centre.y()
         << "\" font-size=\"14\" text-anchor=\"middle\" fill=\"#555\">" << escape(panel.name)
         << "</text>\n</g>\n";
   }

@@ -1,8 +1,10 @@
 // The pattern's picture: every panel and edge drawn, both sides of a stitch in the stitch's colour.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <regex>
 #include <set>
+#include <vector>
 
 #include "dresskit/pattern/svg.h"
 #include "pattern_fixtures.h"
@@ -60,6 +62,28 @@ TEST(PatternSvg, PanelsEdgesAndStitchColours) {
     ASSERT_LE(y, h);
   }
   EXPECT_GT(points, 1000);
+  // The edge labels of a panel do not overlap (the pencil dress's waist corners have edges of
+  // 1.1–1.5 cm side by side): boxes of 7 px per character and 14 px high around each label's centre.
+  const std::regex label_re("<text x=\"([0-9.]+)\" y=\"([0-9.]+)\" font-size=\"12\"[^>]*>([^<]*)</text>");
+  int labels = 0, overlaps = 0;
+  for (std::size_t open = svg.find("<g id="); open != std::string::npos; open = svg.find("<g id=", open + 1)) {
+    const std::string group = svg.substr(open, svg.find("</g>", open) - open);
+    // Only the text elements: the polylines' long point lists are no business of the regex.
+    std::string texts;
+    for (std::size_t t = group.find("<text"); t != std::string::npos; t = group.find("<text", t + 1))
+      texts += group.substr(t, group.find("</text>", t) + 7 - t);
+    std::vector<std::array<double, 4>> boxes;
+    for (auto t = std::sregex_iterator(texts.begin(), texts.end(), label_re); t != std::sregex_iterator(); ++t) {
+      const double x = std::stod((*t)[1]), y = std::stod((*t)[2]), half = 3.5 * double((*t)[3].length());
+      const std::array<double, 4> box{x - half, x + half, y - 7.0, y + 7.0};
+      for (const auto& b : boxes)
+        overlaps += box[0] < b[1] && b[0] < box[1] && box[2] < b[3] && b[2] < box[3];
+      boxes.push_back(box);
+      ++labels;
+    }
+  }
+  EXPECT_EQ(labels, edges);
+  EXPECT_EQ(overlaps, 0);
 }
 
 }  // namespace
