@@ -221,19 +221,6 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
   d.mesh = sewn.garment;
   d.mesh.labels.resize(0);  // panels are not body parts: the garment is segmented like a mesh
   d.mesh.label_names.clear();
-  // Texture coordinates from the flat pattern: the welded garment's faces are the cut faces whose
-  // corners stayed apart, in order; each corner keeps its panel's flat position.
-  d.mesh.TC = pattern::texture_coordinates(p, cut);
-  d.mesh.FTC.resize(d.mesh.num_faces(), 3);
-  Eigen::Index kept = 0;
-  for (Eigen::Index f = 0; f < cut.faces.rows(); ++f) {
-    const int a = sewn.welded_vertex[cut.faces(f, 0)], b = sewn.welded_vertex[cut.faces(f, 1)],
-              c = sewn.welded_vertex[cut.faces(f, 2)];
-    if (a == b || b == c || a == c) continue;
-    if (kept < d.mesh.FTC.rows()) d.mesh.FTC.row(kept) = cut.faces.row(f);
-    ++kept;
-  }
-  if (kept != d.mesh.num_faces()) d.mesh.TC.resize(0, 2), d.mesh.FTC.resize(0, 3);
   d.file.load = body_units;  // sewn around the body: its outputs are in the body's units and axes
   s.panels.clear();
   for (const pattern::Panel& panel : p.panels) s.panels.push_back(panel.name);
@@ -243,6 +230,16 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
   for (Eigen::Index f = 0; f < cut.faces.rows(); ++f)
     for (int k = 0; k < 3; ++k) s.panel_faces(f, k) = sewn.welded_vertex[cut.faces(f, k)];
   s.panel_of_face = cut.panel_of_face;
+  // Texture coordinates from the flat pattern: the welded garment's faces are the cut faces whose
+  // welded corners stayed apart, in order; each corner keeps its panel's flat position.
+  d.mesh.TC = pattern::texture_coordinates(p, cut);
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index f = 0; f < s.panel_faces.rows(); ++f) {
+    const int a = s.panel_faces(f, 0), b = s.panel_faces(f, 1), c = s.panel_faces(f, 2);
+    if (a != b && b != c && a != c) kept.push_back(f);
+  }
+  if (Eigen::Index(kept.size()) == d.mesh.num_faces()) d.mesh.FTC = cut.faces(kept, Eigen::all);
+  else d.mesh.TC.resize(0, 2);
   // Flat lengths of the triangles' edges, keyed by their welded ends.
   std::map<std::array<int, 2>, std::pair<double, int>> flat;
   for (Eigen::Index f = 0; f < cut.faces.rows(); ++f)
