@@ -80,6 +80,8 @@ TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
   if (same_faces) {
     result.TC = original.TC;
     result.FTC = original.FTC;
+    result.face_groups = original.face_groups;
+    result.group_names = original.group_names;
   }
   return result;
 }

@@ -238,8 +238,13 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
     const int a = s.panel_faces(f, 0), b = s.panel_faces(f, 1), c = s.panel_faces(f, 2);
     if (a != b && b != c && a != c) kept.push_back(f);
   }
-  if (Eigen::Index(kept.size()) == d.mesh.num_faces()) d.mesh.FTC = cut.faces(kept, Eigen::all);
-  else d.mesh.TC.resize(0, 2);
+  if (Eigen::Index(kept.size()) == d.mesh.num_faces()) {
+    d.mesh.FTC = cut.faces(kept, Eigen::all);
+    d.mesh.face_groups = cut.panel_of_face(kept);  // the panels, as OBJ groups
+    d.mesh.group_names = s.panels;
+  } else {
+    d.mesh.TC.resize(0, 2);
+  }
   // Flat lengths of the triangles' edges, keyed by their welded ends.
   std::map<std::array<int, 2>, std::pair<double, int>> flat;
   for (Eigen::Index f = 0; f < cut.faces.rows(); ++f)

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cstdio>
 #include <cstring>
@@ -73,8 +74,10 @@ void append_int(std::string& out, long value) {
 
 
 // The faces to write: each quad once (when both of its triangles are in F), the other triangles as
-// they are; with `texture`, each polygon's corner texture coordinate rows (TriangleMesh::FTC).
-std::vector<std::vector<int>> output_polygons(const TriangleMesh& m, std::vector<std::vector<int>>* texture = nullptr) {
+// they are; with `texture`, each polygon's corner texture coordinate rows (TriangleMesh::FTC); with
+// `face`, each polygon's first face.
+std::vector<std::vector<int>> output_polygons(const TriangleMesh& m, std::vector<std::vector<int>>* texture = nullptr,
+                                              std::vector<int>* face = nullptr) {
   std::map<std::array<int, 3>, int> quad_of_triangle;
   const auto tri_key = detail::directed_triangle_key;
   for (int q = 0; q < m.quads.rows(); ++q) {
@@ -104,18 +107,21 @@ std::vector<std::vector<int>> output_polygons(const TriangleMesh& m, std::vector
     return 0;
   };
   if (texture) texture->clear();
+  if (face) face->clear();
   for (int f = 0; f < m.num_faces(); ++f) {
     const int q = face_quad[f];
     if (q >= 0 && found[q] == 2) {
       if (written[q]) continue;
       written[q] = true;
       polygons.push_back({m.quads(q, 0), m.quads(q, 1), m.quads(q, 2), m.quads(q, 3)});
+      if (face) face->push_back(f);
       if (texture) {
         texture->emplace_back();
         for (int v : polygons.back()) texture->back().push_back(corner_texture(quad_faces[q][0], quad_faces[q][1], v));
       }
     } else {
       polygons.push_back({m.F(f, 0), m.F(f, 1), m.F(f, 2)});
+      if (face) face->push_back(f);
       if (texture) texture->push_back({m.FTC(f, 0), m.FTC(f, 1), m.FTC(f, 2)});
     }
   }
@@ -160,9 +166,23 @@ std::string obj_text(const TriangleMesh& m) {
     }
   };
   const bool uv = m.UV.rows() > 0;
+  const bool groups = m.face_groups.size() == m.num_faces() && m.face_groups.size() > 0;
   std::vector<std::vector<int>> corner_rows;
-  const auto polygons = output_polygons(m, corners ? &corner_rows : nullptr);
+  std::vector<int> first_face;
+  const auto polygons = output_polygons(m, corners ? &corner_rows : nullptr, &first_face);
+  int group = -1;
   for (std::size_t p = 0; p < polygons.size(); ++p) {
+    // A new run of faces in one group starts a group line (`g` alone: no group); a name's blanks
+    // become underscores, since a `g` line's blanks separate groups.
+    const int g = groups && m.face_groups(first_face[p]) < static_cast<int>(m.group_names.size())
+                      ? m.face_groups(first_face[p])
+                      : -1;
+    if (g != group) {
+      std::string name = g >= 0 ? m.group_names[static_cast<std::size_t>(g)] : "";
+      std::replace_if(name.begin(), name.end(), [](unsigned char c) { return std::isspace(c) != 0; }, '_');
+      out += name.empty() ? "g\n" : "g " + name + '\n';
+    }
+    group = g;
     out += 'f';
     for (std::size_t k = 0; k < polygons[p].size(); ++k) {
       const int v = polygons[p][k];

@@ -65,6 +65,13 @@ void validate_mesh(const TriangleMesh& mesh, const std::string& what) {
       throw InputError(what + ": a corner refers to a texture coordinate that the mesh does not have");
     if (!mesh.TC.allFinite()) throw InputError(what + ": a texture coordinate is not finite");
   }
+  if (mesh.face_groups.size() != 0) {
+    if (mesh.face_groups.size() != mesh.num_faces())
+      throw InputError(what + ": face groups for " + std::to_string(mesh.face_groups.size()) + " faces of " +
+                       std::to_string(mesh.num_faces()));
+    if (mesh.face_groups.minCoeff() < -1 || mesh.face_groups.maxCoeff() >= int(mesh.group_names.size()))
+      throw InputError(what + ": a face's group has no name");
+  }
   if (mesh.N.size() > 0 && !mesh.N.allFinite()) {
     throw InputError(what + ": a vertex normal is not finite");
   }

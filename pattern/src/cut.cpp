@@ -204,6 +204,8 @@ TriangleMesh placed_mesh(const Pattern& pattern, const CutPattern& cut) {
   m.F = cut.faces;
   m.labels = cut.panel_of_vertex;
   for (const Panel& p : pattern.panels) m.label_names.push_back(p.name);
+  m.face_groups = cut.panel_of_face;
+  m.group_names = m.label_names;
   return m;
 }
 

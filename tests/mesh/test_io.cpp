@@ -181,6 +181,9 @@ TEST(Io, CornerTextureCoordinatesKeepTheirSeam) {
   m.TC << 0, 0, 1, 0, 1, 1, 2, 0, 3, 1, 2, 1;
   m.FTC.resize(2, 3);
   m.FTC << 0, 1, 2, 3, 4, 5;
+  // One group per face, as a pattern's panels (a name's blank becomes an underscore).
+  m.face_groups = Eigen::Vector2i(0, 1);
+  m.group_names = {"front panel", "back"};
   save_mesh(m, dir.file("seam.obj"));
   std::ifstream in(dir.file("seam.obj"));
   std::vector<std::string> faces;
@@ -188,13 +191,15 @@ TEST(Io, CornerTextureCoordinatesKeepTheirSeam) {
   for (std::string line; std::getline(in, line);) {
     vertices += line.rfind("v ", 0) == 0;
     coordinates += line.rfind("vt ", 0) == 0;
-    if (line.rfind("f ", 0) == 0) faces.push_back(line);
+    if (line.rfind("f ", 0) == 0 || line.rfind("g ", 0) == 0) faces.push_back(line);
   }
   EXPECT_EQ(vertices, 4);
   EXPECT_EQ(coordinates, 6);
-  ASSERT_EQ(faces.size(), 2u);
-  EXPECT_EQ(faces[0], "f 1/1 2/2 4/3");
-  EXPECT_EQ(faces[1], "f 1/4 4/5 3/6");
+  ASSERT_EQ(faces.size(), 4u);
+  EXPECT_EQ(faces[0], "g front_panel");
+  EXPECT_EQ(faces[1], "f 1/1 2/2 4/3");
+  EXPECT_EQ(faces[2], "g back");
+  EXPECT_EQ(faces[3], "f 1/4 4/5 3/6");
   const TriangleMesh obj = load_mesh(dir.file("seam.obj"));
   EXPECT_EQ(obj.V, m.V);
   EXPECT_EQ(obj.F, m.F);
@@ -213,7 +218,12 @@ TEST(Io, CornerTextureCoordinatesKeepTheirSeam) {
     EXPECT_TRUE(found) << "written vertex " << w;
   }
   EXPECT_NEAR(analyse_topology(glb).area, 1.0, 1e-6);
-  // Corners that name a coordinate the mesh does not have are refused.
+  // Corners that name a coordinate the mesh does not have, or faces in a group without a name,
+  // are refused.
+  validate_mesh(m, "good");
+  m.face_groups(1) = 2;
+  EXPECT_THROW(validate_mesh(m, "bad"), InputError);
+  m.face_groups(1) = 1;
   m.FTC(1, 2) = 6;
   EXPECT_THROW(validate_mesh(m, "bad"), InputError);
 }

@@ -9,6 +9,7 @@
 #include <array>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <nlohmann/json.hpp>
 
@@ -242,11 +243,15 @@ TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
     std::ifstream in(out + "/" + stem + ".dressed.obj");
     std::vector<Eigen::Vector2d> tc;
     std::vector<std::array<int, 6>> corners;  // v, vt per corner
+    std::map<std::string, int> group_faces;   // faces under each `g` line's panel
+    std::string group;
     for (std::string line; std::getline(in, line);) {
       std::istringstream words(line);
       std::string key;
       words >> key;
-      if (key == "vt") {
+      if (key == "g") {
+        words >> group;
+      } else if (key == "vt") {
         Eigen::Vector2d t;
         words >> t.x() >> t.y();
         tc.push_back(t);
@@ -256,9 +261,14 @@ TEST(PatternDressCli, DressBodyPatternWritesOutputsAndSeams) {
         for (int k = 0; k < 3; ++k) words >> c[2 * k] >> slash >> c[2 * k + 1];
         ASSERT_FALSE(words.fail()) << line;
         corners.push_back(c);
+        ++group_faces[group];
       }
     }
     EXPECT_EQ(tc.size(), std::size_t(cut.flat.rows()));
+    // A group per panel, holding that panel's triangles.
+    ASSERT_EQ(group_faces.size(), p.panels.size());
+    for (std::size_t k = 0; k < p.panels.size(); ++k)
+      EXPECT_EQ(group_faces[p.panels[k].name], (cut.panel_of_face.array() == int(k)).count()) << p.panels[k].name;
     ASSERT_EQ(corners.size(), std::size_t(dressed.num_faces()));
     double area = 0.0;
     int backwards = 0;

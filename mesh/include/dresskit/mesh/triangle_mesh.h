@@ -21,6 +21,11 @@ struct TriangleMesh {
   /// not carry them.
   Eigen::MatrixX2d TC;
   Eigen::MatrixX3i FTC;
+  /// #F group per face (index into group_names, -1 = none), or empty: a sewn pattern's panels.
+  /// Written as OBJ groups (`g name` before each run of faces in one group); not read, and not
+  /// carried by meshes made anew from this one.
+  Eigen::VectorXi face_groups;
+  std::vector<std::string> group_names;
   /// #V per-vertex part labels (index into label_names, -1 = unlabelled), or empty.
   Eigen::VectorXi labels;
   std::vector<std::string> label_names;

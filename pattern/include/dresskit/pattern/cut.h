@@ -52,7 +52,7 @@ struct CutPattern {
 /// meshed (an outline whose resampled polygon crosses itself at this edge length).
 CutPattern cut_pattern(const Pattern& pattern, const CutOptions& options = {});
 
-/// The cut panels as one mesh in 3D [m] (separate pieces; labels = panels, named).
+/// The cut panels as one mesh in 3D [m] (separate pieces; labels and face groups = panels, named).
 mesh::TriangleMesh placed_mesh(const Pattern& pattern, const CutPattern& cut);
 /// Texture coordinates of the cut vertices (#V×2) [m]: each panel flat and seen from the side its
 /// faces point to (mirrored along u where its outline turns clockwise in its plane, so that a
