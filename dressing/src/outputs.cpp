@@ -72,16 +72,12 @@ TriangleMesh in_file_order(const DressedGarment& g, const Eigen::MatrixX3d& V) {
     quads += ok;
   }
   result.quads.conservativeResize(quads, 4);
-  // Corner texture coordinates (a pattern's flat panels, a file's UV seams) where the faces are the
-  // file's (or the pattern's) as they are.
-  bool same_faces = original.FTC.rows() == original.num_faces() && kept == original.num_faces();
-  for (int f = 0; f < kept && same_faces; ++f)
-    for (int k = 0; k < 3; ++k) same_faces = same_faces && result.F(f, k) == file_vertex(original.F(f, k));
-  if (same_faces) {
-    result.TC = original.TC;
-    result.FTC = original.FTC;
-    result.face_groups = original.face_groups;
-    result.group_names = original.group_names;
+  // Per face: corner texture coordinates (a file's UV seams, a pattern's flat panels) and groups
+  // (a pattern's panels), where every face was written.
+  if (kept == mesh.num_faces()) {
+    if (mesh.FTC.rows() == mesh.num_faces()) result.TC = mesh.TC, result.FTC = mesh.FTC;
+    if (mesh.face_groups.size() == mesh.num_faces())
+      result.face_groups = mesh.face_groups, result.group_names = mesh.group_names;
   }
   return result;
 }

@@ -2,6 +2,8 @@
 // includes CGAL's PMP headers (they cost ~15 s of compile time each).
 #include "dresskit/mesh/cleanup.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "dresskit/mesh/errors.h"
@@ -245,6 +247,40 @@ void carry_attributes(const TriangleMesh& in, TriangleMesh& out, CleanupResult& 
   }
   out.quads.resize(static_cast<Eigen::Index>(quads.size()), 4);
   for (size_t q = 0; q < quads.size(); ++q) out.quads.row(static_cast<Eigen::Index>(q)) = quads[q].transpose();
+
+  // Per face corner: texture coordinates and face groups of an output face whose corners are an
+  // input face's (either orientation) come from that face; a face the repair made takes, at each
+  // corner, a coordinate its vertex had in some input face, and no group.
+  const bool corners = in.FTC.rows() == in.num_faces() && in.num_faces() > 0 && in.TC.rows() > 0;
+  const bool groups = in.face_groups.size() == in.num_faces() && in.num_faces() > 0;
+  if (!corners && !groups) return;
+  std::map<std::array<int, 3>, int> in_face;
+  for (int f = 0; f < in.num_faces(); ++f) {
+    std::array<int, 3> key{in.F(f, 0), in.F(f, 1), in.F(f, 2)};
+    std::sort(key.begin(), key.end());
+    in_face.emplace(key, f);
+  }
+  std::vector<int> vertex_tc(static_cast<std::size_t>(in.num_vertices()), 0);
+  if (corners)
+    for (int f = in.num_faces() - 1; f >= 0; --f)
+      for (int k = 0; k < 3; ++k) vertex_tc[static_cast<std::size_t>(in.F(f, k))] = in.FTC(f, k);
+  if (corners) out.TC = in.TC, out.FTC.resize(out.num_faces(), 3);
+  if (groups) out.group_names = in.group_names, out.face_groups = Eigen::VectorXi::Constant(out.num_faces(), -1);
+  for (int f = 0; f < out.num_faces(); ++f) {
+    std::array<int, 3> key{from[out.F(f, 0)], from[out.F(f, 1)], from[out.F(f, 2)]};
+    std::sort(key.begin(), key.end());
+    const auto match = key[0] >= 0 ? in_face.find(key) : in_face.end();
+    if (groups && match != in_face.end()) out.face_groups(f) = in.face_groups(match->second);
+    if (!corners) continue;
+    for (int k = 0; k < 3; ++k) {
+      const int v = out.F(f, k);
+      int t = vertex_tc[static_cast<std::size_t>(attribute_from[v])];
+      if (match != in_face.end())
+        for (int m = 0; m < 3; ++m)
+          if (in.F(match->second, m) == from[v]) t = in.FTC(match->second, m);
+      out.FTC(f, k) = t;
+    }
+  }
 }
 
 }  // namespace

@@ -235,3 +235,38 @@ TEST(Cleanup, LeavesTheBorderOfAnOpenSurfaceOpen) {
     EXPECT_NEAR(t.area, m.num_faces() == 1 ? 0.5 : 1.0, 1e-9);
   }
 }
+
+// A repair keeps each surviving face's corner texture coordinates (a UV seam between the two
+// triangles) and its group; the degenerate face it removes takes its own with it.
+TEST(Cleanup, FacesKeepTheirCornerTextureCoordinatesAndGroups) {
+  TriangleMesh m = fixtures::grid(1, 1, 1.0);  // faces (0, 1, 3) and (0, 3, 2)
+  m.F.conservativeResize(3, 3);
+  m.F.row(2) << 1, 1, 2;  // degenerate
+  m.TC.resize(7, 2);
+  m.TC << 0, 0, 1, 0, 1, 1, 2, 0, 3, 1, 2, 1, 9, 9;
+  m.FTC.resize(3, 3);
+  m.FTC << 0, 1, 2, 3, 4, 5, 6, 6, 6;
+  m.face_groups = Eigen::Vector3i(0, 1, 1);
+  m.group_names = {"front", "back"};
+  const CleanupResult r = cleanup_mesh(m);
+  EXPECT_EQ(r.degenerate_faces_removed, 1);
+  ASSERT_EQ(r.mesh.num_faces(), 2);
+  ASSERT_EQ(r.mesh.FTC.rows(), 2);
+  ASSERT_EQ(r.mesh.face_groups.size(), 2);
+  EXPECT_EQ(r.mesh.group_names, m.group_names);
+  // Each output face is one of the input's: same corners at the same places, same coordinates.
+  for (int f = 0; f < 2; ++f) {
+    const Eigen::RowVector3d centre = (r.mesh.V.row(r.mesh.F(f, 0)) + r.mesh.V.row(r.mesh.F(f, 1)) +
+                                       r.mesh.V.row(r.mesh.F(f, 2))) / 3.0;
+    const int g = centre.x() > centre.y() ? 0 : 1;  // (0, 1, 3) lies below the diagonal
+    EXPECT_EQ(r.mesh.face_groups(f), g);
+    for (int k = 0; k < 3; ++k) {
+      const int v = r.mesh.F(f, k);
+      int m_corner = -1;
+      for (int c = 0; c < 3; ++c)
+        if (m.V.row(m.F(g, c)) == r.mesh.V.row(v)) m_corner = c;
+      ASSERT_GE(m_corner, 0);
+      EXPECT_EQ(r.mesh.TC.row(r.mesh.FTC(f, k)), m.TC.row(m.FTC(g, m_corner))) << f << " " << k;
+    }
+  }
+}

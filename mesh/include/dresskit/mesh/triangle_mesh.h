@@ -17,13 +17,12 @@ struct TriangleMesh {
   /// Texture coordinates per face corner, for a texture with seams (a garment sewn from panels:
   /// each panel's flat layout): corner k of face f has TC.row(FTC(f, k)). Both empty, or FTC #F×3.
   /// Where set, the writers use them instead of UV (OBJ `vt` with `f v/vt`; glTF and FBX split a
-  /// vertex whose corners differ). Meshes made anew from this one (cleanup, select_vertices) do
-  /// not carry them.
+  /// vertex whose corners differ). Cleanup carries them face by face; select_vertices does not.
   Eigen::MatrixX2d TC;
   Eigen::MatrixX3i FTC;
   /// #F group per face (index into group_names, -1 = none), or empty: a sewn pattern's panels.
-  /// Written as OBJ groups (`g name` before each run of faces in one group); not read, and not
-  /// carried by meshes made anew from this one.
+  /// Written as OBJ groups (`g name` before each run of faces in one group); not read. Cleanup
+  /// carries them (a face it made has none); select_vertices does not.
   Eigen::VectorXi face_groups;
   std::vector<std::string> group_names;
   /// #V per-vertex part labels (index into label_names, -1 = unlabelled), or empty.
