@@ -75,8 +75,12 @@ std::vector<std::string> dressed_warnings(const DressedGarment& g, const std::st
   if (g.from_pattern && p.sewn_pairs < p.stitch_pairs) {
     char gap[32];
     std::snprintf(gap, sizeof gap, "%.3g", 1e3 * p.max_gap);
-    w.push_back(g.name + ": " + std::to_string(p.stitch_pairs - p.sewn_pairs) + " of " +
-                counted(p.stitch_pairs, "stitch pair", "stitch pairs") + " not sewn, the widest " + gap + " mm open");
+    const int open = p.stitch_pairs - p.sewn_pairs;
+    w.push_back(g.name + ": " + std::to_string(open) + " of " + counted(p.stitch_pairs, "stitch pair", "stitch pairs") +
+                " not sewn, the widest " + gap + " mm open" +
+                (p.welded_open_pairs == 0      ? ""
+                 : p.welded_open_pairs == open ? "; welded shut"
+                                               : "; " + std::to_string(p.welded_open_pairs) + " of them welded shut"));
   }
   for (std::size_t k = 0; k < p.panel_area_dressed.size() && k < p.panel_area.size(); ++k) {
     const double change = p.panel_area_dressed[k] / p.panel_area[k] - 1.0;

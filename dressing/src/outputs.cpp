@@ -132,6 +132,7 @@ json pattern_json(const SewnPattern& p) {
            {{"count", p.stitches},
             {"pairs", p.stitch_pairs},
             {"sewn_pairs", p.sewn_pairs},
+            {"welded_open_pairs", p.welded_open_pairs},
             {"unwelded_pairs", p.unwelded.size()},
             {"max_gap_m", p.max_gap},
             {"closed", p.closed},

@@ -196,6 +196,7 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
   pattern::SewOptions sew_options;
   sew_options.fabric = d.fabric;
   sew_options.tolerance = options.seam_tolerance;
+  sew_options.weld_gap = options.pattern_edge_length;
   std::vector<std::string> panel_parts;
   if (parts.pattern_body && parts.body) {
     PanelMoves moves = panel_moves(cut.placed, cut.panel_of_vertex, static_cast<int>(p.panels.size()),
@@ -265,6 +266,7 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
   s.stitches = static_cast<int>(p.stitches.size());
   s.stitch_pairs = sewn.stitch_pairs;
   s.sewn_pairs = sewn.closed_pairs;
+  s.welded_open_pairs = sewn.welded_open;
   s.sew_method = sewn.method;
   s.max_gap = sewn.max_gap;
   s.closed = sewn.closed;
@@ -279,8 +281,8 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
   s.sew_simulated = sewn.simulated_seconds;
   s.warnings = p.warnings;
   if (!sewn.closed) {
-    // The stitch furthest from closed, named: its pairs that were sewn are welded, the rest stay
-    // open.
+    // The stitch furthest from closed, named: its pairs that were sewn, or came within the cut's
+    // edge length, are welded, the rest stay open.
     const auto widest =
         std::max_element(sewn.stitch_gap.begin(), sewn.stitch_gap.end()) - sewn.stitch_gap.begin();
     const pattern::Stitch& st = p.stitches[static_cast<std::size_t>(widest)];
@@ -298,7 +300,8 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
     std::snprintf(after, sizeof after, "%.3g", sewn.simulated_seconds);
     s.warnings.push_back(g.file.path + ": stitch " + std::to_string(widest) + " (" + p.edge_name(st.a.panel, st.a.edge) +
                          " to " + p.edge_name(st.b.panel, st.b.edge) + ") is still " + open_mm + " mm open after " +
-                         after + " s of sewing");
+                         after + " s of sewing" +
+                         (sewn.closed_pairs + sewn.welded_open == sewn.stitch_pairs ? "; welded shut" : ""));
   }
 }
 

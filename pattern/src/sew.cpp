@@ -112,7 +112,8 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   r.sewn = sim.positions();
   r.simulated_seconds = simulated + sim.time();
   r.stitch_gap.assign(pattern.stitches.size(), 0.0);
-  std::vector<char> weld(cut.stitch_pairs.size(), 0);  // the pairs the simulator holds
+  // The pairs to weld: those the simulator holds, and those left open within the weld gap.
+  std::vector<char> weld(cut.stitch_pairs.size(), 0);
   for (std::size_t p = 0; p < cut.stitch_pairs.size(); ++p) {
     const double gap =
         (r.sewn.row(cut.stitch_pairs[p][0]) - r.sewn.row(cut.stitch_pairs[p][1])).norm();
@@ -120,11 +121,12 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
     widest = std::max(widest, gap);
     r.max_gap = std::max(r.max_gap, gap);
     r.mean_gap += gap / double(cut.stitch_pairs.size());
-    weld[p] = sim.sewn()[p];
-    r.closed_pairs += weld[p] != 0;
+    weld[p] = sim.sewn()[p] || gap <= options.weld_gap;
+    r.closed_pairs += sim.sewn()[p] != 0;
   }
   r.closed = r.closed_pairs == r.stitch_pairs;
-  // Weld: sewn pairs become single vertices; the panel labels follow their vertices. A held pair
+  // Weld: sewn pairs, and pairs left open within the weld gap, become single vertices; the panel
+  // labels follow their vertices. A held pair
   // may lie up to a millimetre or two apart with a fold of cloth between its sides, where several
   // panels meet (the cloth–cloth pass keeps the fold from the sides): welding it there makes the
   // garment cross itself (the shirt's armpits, 6 times). The pairs of welded vertices in a crossing
@@ -160,6 +162,7 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
     const int a = r.welded_vertex[std::size_t(cut.stitch_pairs[p][0])];
     const int b = r.welded_vertex[std::size_t(cut.stitch_pairs[p][1])];
     if (sim.sewn()[p] && !weld[p] && a != b) r.unwelded.push_back({a, b});  // (joined by others)
+    r.welded_open += !sim.sewn()[p] && weld[p];
   }
   r.garment.V = V;
   r.garment.F = F;

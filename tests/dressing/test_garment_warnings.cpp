@@ -54,6 +54,11 @@ TEST(GarmentWarnings, APatternWithStitchesLeftOpenSaysHowMany) {
   const std::vector<std::string> w = dressed_warnings(g);
   ASSERT_EQ(w.size(), 1u);
   EXPECT_EQ(w[0], "shirt: 17 of 195 stitch pairs not sewn, the widest 46.1 mm open");
+  g.pattern.welded_open_pairs = 5;
+  EXPECT_EQ(dressed_warnings(g)[0], "shirt: 17 of 195 stitch pairs not sewn, the widest 46.1 mm open; 5 of them welded shut");
+  g.pattern.welded_open_pairs = 17;
+  EXPECT_EQ(dressed_warnings(g)[0], "shirt: 17 of 195 stitch pairs not sewn, the widest 46.1 mm open; welded shut");
+  g.pattern.welded_open_pairs = 0;
   g.pattern.sewn_pairs = 195;
   EXPECT_TRUE(dressed_warnings(g).empty());
 }

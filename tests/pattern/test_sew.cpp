@@ -1,7 +1,10 @@
 // Sewing on its own: two rectangles either side of a box are drawn shut around it and welded, also
-// around a box standing elsewhere and a larger one; a step limit leaves pairs open and unwelded;
-// panels placed inside the body they are placed for are refused.
+// around a box standing elsewhere and a larger one; a step limit leaves pairs open and unwelded
+// (welded where they lie within the weld gap); panels placed inside the body they are placed for
+// are refused.
 #include <gtest/gtest.h>
+
+#include <algorithm>
 
 #include "dresskit/mesh/errors.h"
 #include "dresskit/pattern/cut.h"
@@ -100,19 +103,57 @@ TEST(PatternSew, BodyFrameOfABox) {
   EXPECT_NEAR(f.origin.z(), 0.25, 1e-12);
 }
 
-TEST(PatternSew, AStepLimitLeavesPairsOpenAndUnwelded) {
-  const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
-  const CutPattern cut = cut_pattern(p, {0.04});
+// Sewing on the box stopped after two steps, without the seam-force fallback: the panels still
+// 20 cm or more apart.
+SewOptions stopped_after_two_steps() {
   SewOptions o = on_the_box();
   o.max_steps = 2;
   o.fallback_acceleration = 0.0;
-  const SewResult r = sew_pattern(p, cut, box_between_panels(), o);
+  return o;
+}
+
+TEST(PatternSew, AStepLimitLeavesPairsOpenAndUnwelded) {
+  const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
+  const CutPattern cut = cut_pattern(p, {0.04});
+  const SewResult r = sew_pattern(p, cut, box_between_panels(), stopped_after_two_steps());
   EXPECT_FALSE(r.closed);
   EXPECT_EQ(r.stopped, "step limit");
   EXPECT_EQ(r.steps, 2);
   EXPECT_LT(r.closed_pairs, r.stitch_pairs);
   EXPECT_GT(r.max_gap, 0.2);  // 30 cm apart, drawn 0.5 m/s for 2 steps
+  EXPECT_EQ(r.welded_open, 0);  // all farther apart than the weld gap
   EXPECT_EQ(r.garment.V.rows(), cut.placed.rows() - r.closed_pairs);
+}
+
+// Pairs left open are welded where their sides lie within the weld gap, the others stay open: a
+// gap between the open pairs' distances splits them.
+TEST(PatternSew, PairsLeftOpenWithinTheWeldGapAreWelded) {
+  const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
+  const CutPattern cut = cut_pattern(p, {0.04});
+  SewOptions o = stopped_after_two_steps();
+  o.weld_gap = 0.0;
+  const SewResult open = sew_pattern(p, cut, box_between_panels(), o);
+  ASSERT_EQ(open.welded_open, 0);
+  std::vector<double> gaps;
+  for (const std::array<int, 2>& pair : cut.stitch_pairs)
+    gaps.push_back((open.sewn.row(pair[0]) - open.sewn.row(pair[1])).norm());
+  std::vector<double> sorted = gaps;
+  std::sort(sorted.begin(), sorted.end());
+  o.weld_gap = 0.5 * (sorted[sorted.size() / 2] + sorted[sorted.size() / 2 + 1]);
+  ASSERT_LT(sorted[sorted.size() / 2], sorted[sorted.size() / 2 + 1]);
+  const SewResult r = sew_pattern(p, cut, box_between_panels(), o);
+  EXPECT_EQ(r.sewn, open.sewn);  // the same run; only the welding differs
+  EXPECT_FALSE(r.closed);
+  EXPECT_EQ(r.closed_pairs, open.closed_pairs);
+  int within = 0;
+  for (double g : gaps) within += g <= o.weld_gap;
+  EXPECT_EQ(r.welded_open, within);
+  EXPECT_EQ(r.garment.V.rows(), cut.placed.rows() - r.closed_pairs - r.welded_open);
+  for (std::size_t q = 0; q < cut.stitch_pairs.size(); ++q) {
+    const bool joined = r.welded_vertex[std::size_t(cut.stitch_pairs[q][0])] ==
+                        r.welded_vertex[std::size_t(cut.stitch_pairs[q][1])];
+    EXPECT_EQ(joined, gaps[q] <= o.weld_gap) << q;
+  }
 }
 
 TEST(PatternSew, PanelsPlacedInsideTheBodyAreRefused) {

@@ -128,6 +128,7 @@ struct SewnPattern {
   int stitches = 0;        ///< the pattern's stitches (seams, darts, pleats)
   int stitch_pairs = 0;    ///< matching point pairs to sew
   int sewn_pairs = 0;      ///< of those, sewn and welded
+  int welded_open_pairs = 0;  ///< pairs left open but welded (within the cut's edge length)
   std::string sew_method;  ///< "drawn" or "seam forces" (pattern::SewResult::method)
   /// Largest stitch pair distance when sewing stopped, before welding [m]: a pair sewn (held by the
   /// simulator) may be left slightly apart by the collision passes after it.

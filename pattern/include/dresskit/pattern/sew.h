@@ -81,6 +81,11 @@ struct SewOptions {
   /// (0: no second try).
   double fallback_acceleration = 40.0;
   double fallback_friction = 0.5;  ///< [unitless]
+  /// Pairs that sewing leaves open but within this distance of each other are welded too, their
+  /// two sides joined at their midpoint (settling then relaxes the triangles around them), unless
+  /// that makes the garment cross itself; farther ones stay open. 0: only sewn pairs are welded.
+  /// One triangle edge of the default cut (dress sets it to the cut's edge length) [m].
+  double weld_gap = 0.02;
   /// The pattern's placement must suit the body: more than this share of the placed panels' points
   /// deeper than inside_depth [m] inside the body is an InputError (a pattern placed for another
   /// body; sewing from inside a body does not close and takes minutes).
@@ -115,6 +120,7 @@ struct SewResult {
   bool closed = false;   ///< every stitch pair sewn (came within the tolerance, then held)
   int stitch_pairs = 0;  ///< matching point pairs to sew
   int closed_pairs = 0;  ///< of those, sewn (and welded)
+  int welded_open = 0;   ///< pairs not sewn but welded, their sides within SewOptions::weld_gap
   /// Largest stitch pair distance at the end, before welding [m]: a sewn pair is held together by
   /// the simulator's constraint phase, and the collision passes after it may leave it slightly
   /// apart.
