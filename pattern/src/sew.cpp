@@ -307,7 +307,8 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
   }
   SewResult r = sew_once(pattern, cut, panels, distance, options, 0.0, first);
   r.method = "drawn";
-  if (!r.closed && options.fallback_acceleration > 0.0) {
+  // Pairs left open within the weld gap are welded (sew_once); seam forces are for the farther.
+  if (!r.closed && r.max_gap > options.weld_gap && options.fallback_acceleration > 0.0) {
     SewResult pulled =
         sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration, first);
     pulled.method = "seam forces";

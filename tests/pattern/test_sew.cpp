@@ -156,6 +156,22 @@ TEST(PatternSew, PairsLeftOpenWithinTheWeldGapAreWelded) {
   }
 }
 
+// The seam-force fallback runs only where some pair is left farther open than the weld gap.
+TEST(PatternSew, NoSeamForcesWhereEveryOpenPairIsWelded) {
+  const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
+  const CutPattern cut = cut_pattern(p, {0.04});
+  SewOptions o = on_the_box();
+  o.max_steps = 2;
+  o.weld_gap = 1.0;  // the panels are 30 cm apart
+  const SewResult welded = sew_pattern(p, cut, box_between_panels(), o);
+  EXPECT_EQ(welded.method, "drawn");
+  EXPECT_EQ(welded.steps, 2);
+  EXPECT_EQ(welded.closed_pairs + welded.welded_open, welded.stitch_pairs);
+  o.weld_gap = 0.1;
+  const SewResult tried = sew_pattern(p, cut, box_between_panels(), o);
+  EXPECT_GT(tried.steps, 2);  // both tries' steps
+}
+
 TEST(PatternSew, PanelsPlacedInsideTheBodyAreRefused) {
   const Pattern p = parse_pattern(test::two_panel_pattern(), "two.json");
   const CutPattern cut = cut_pattern(p, {0.04});
