@@ -126,11 +126,11 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   }
   r.closed = r.closed_pairs == r.stitch_pairs;
   // Weld: sewn pairs, and pairs left open within the weld gap, become single vertices; the panel
-  // labels follow their vertices. A held pair
-  // may lie up to a millimetre or two apart with a fold of cloth between its sides, where several
-  // panels meet (the cloth–cloth pass keeps the fold from the sides): welding it there makes the
-  // garment cross itself (the shirt's armpits, 6 times). The pairs of welded vertices in a crossing
-  // are left unwelded, a few rounds while that lowers the crossings, and kept in r.unwelded.
+  // labels follow their vertices. A held pair may lie up to a millimetre or two apart with a fold
+  // of cloth between its sides, where several panels meet (the cloth–cloth pass keeps the fold
+  // from the sides): welding it there makes the garment cross itself (the shirt's armpits, 6
+  // times). The pairs of welded vertices in a crossing are left unwelded, a few rounds while that
+  // lowers the crossings, and the sewn ones among them kept in r.unwelded.
   Eigen::MatrixX3d V;
   Eigen::MatrixX3i F;
   auto weld_held = [&] {

@@ -75,10 +75,10 @@ struct SewOptions {
   double friction = 0.0;
   /// Cloth–cloth collisions while sewing: panels drawn across each other do not pass through.
   bool self_collision = true;
-  /// Where drawing leaves pairs unsewn, the panels are sewn again from their places by seam forces
-  /// instead, each stitch's pairs together pulling with at most this acceleration × the cloth's
-  /// mass [m/s²], with fallback_friction against the body; the closer of the two results is kept
-  /// (0: no second try).
+  /// Where drawing leaves pairs unsewn, some farther apart than weld_gap (closer ones are welded),
+  /// the panels are sewn again from their places by seam forces instead, each stitch's pairs
+  /// together pulling with at most this acceleration × the cloth's mass [m/s²], with
+  /// fallback_friction against the body; the closer of the two results is kept (0: no second try).
   double fallback_acceleration = 40.0;
   double fallback_friction = 0.5;  ///< [unitless]
   /// Pairs that sewing leaves open but within this distance of each other are welded too, their
