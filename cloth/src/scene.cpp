@@ -540,7 +540,7 @@ ClothScene load_cloth_scene(const std::string& path) {
              "projective_iterations", "time_scheme", "projective_collisions", "self_collision", "cloth_thickness",
              "cloth_friction", "seam_tolerance", "weld_seams", "projective_lbfgs_history",
              "projective_adaptive_weights", "stop_at_rest", "rest_mean_speed", "rest_max_speed",
-             "rest_time", "contact_travel"});
+             "rest_time", "contact_travel", "rise_skips_held_springs"});
     SimulationOptions& o = scene.simulation;
     if (s.has("integrator")) o.integrator = parse_integrator(s.text("integrator", ""));
     const std::string solver = s.text("linear_solver", "cg");
@@ -573,6 +573,7 @@ ClothScene load_cloth_scene(const std::string& path) {
     o.iteration_tolerance = s.number("newton_tolerance", o.iteration_tolerance, 1e-15, 1.0);
     o.dt_min = s.number("dt_min", std::min(o.dt_min, o.dt), 1e-12, 1.0);
     o.max_strain_change = s.number("max_strain_change", o.max_strain_change, 1e-9, 10.0);
+    o.rise_skips_held_springs = s.boolean("rise_skips_held_springs", o.rise_skips_held_springs);
     o.layer_order_guard = s.boolean("layer_order_guard", o.layer_order_guard);
     o.projective.iterations = static_cast<int>(s.number("projective_iterations", o.projective.iterations, 1, 10000));
     o.self_collision = s.boolean("self_collision", o.self_collision);

@@ -356,11 +356,24 @@ double ClothSimulator::free_strain() const {
   double worst = 0.0;
   for (int k = 0; k < s.size(); ++k) {
     if (s.type[k] != SpringType::structural || std::isfinite(start_distance_[s.i[k]]) ||
-        std::isfinite(start_distance_[s.j[k]]))
+        std::isfinite(start_distance_[s.j[k]]) || (!held_at_limit_.empty() && held_at_limit_[k]))
       continue;
     worst = std::max(worst, (x_.row(s.j[k]) - x_.row(s.i[k])).norm() * inv_rest_[k] - 1.0);
   }
   return worst;
+}
+
+void ClothSimulator::mark_held_springs() {
+  held_at_limit_.clear();
+  if (!options_.rise_skips_held_springs || !options_.strain_limiting) return;
+  // Within 0.001 of the limit: the length limit leaves a spring it corrected at the limit (within
+  // strain_limit_tolerance), and the springs around it a little below.
+  const double held = options_.strain_limit - 1e-3;
+  const SpringSet& s = model_.springs;
+  held_at_limit_.assign(static_cast<std::size_t>(s.size()), 0);
+  for (int k = 0; k < s.size(); ++k)
+    held_at_limit_[k] = s.type[k] == SpringType::structural &&
+                        (x_.row(s.j[k]) - x_.row(s.i[k])).norm() * inv_rest_[k] - 1.0 >= held;
 }
 
 StepResult ClothSimulator::try_step(double dt) {
@@ -535,6 +548,7 @@ StepResult ClothSimulator::step() {
   int retries = 0;
   double last_rise = 0.0;
   const double bound = step_bound();
+  mark_held_springs();
   auto on_ladder = [&](double wanted) {
     double h = options_.dt;
     while (h > wanted && 0.5 * h >= options_.dt_min) h *= 0.5;

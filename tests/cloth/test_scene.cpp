@@ -112,3 +112,16 @@ TEST(ClothScene, ProjectiveDynamicsKeys) {
   EXPECT_TRUE(t.simulation.projective.adaptive_weights);
   EXPECT_EQ(t.simulation.projective.lbfgs_history, 5);
 }
+
+TEST(ClothScene, AdaptiveStepKeys) {
+  test::TempDir dir;
+  const std::string grid = R"("grid": {"size": [1, 1], "resolution": [4, 4]})";
+  const ClothScene defaults = load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}})"));
+  EXPECT_FALSE(defaults.simulation.rise_skips_held_springs);
+  const ClothScene s = load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation":
+      {"max_strain_change": 0.1, "rise_skips_held_springs": true}})"));
+  EXPECT_TRUE(s.simulation.rise_skips_held_springs);
+  EXPECT_DOUBLE_EQ(s.simulation.max_strain_change, 0.1);
+  EXPECT_THROW(load_cloth_scene(write(dir, R"({"cloth": {)" + grid + R"(}, "simulation":
+      {"rise_skips_held_springs": 1}})")), InputError);
+}

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
+#include <iostream>
 #include <random>
 
 #include "dresskit/cloth/simulator.h"
@@ -320,6 +321,56 @@ TEST(Simulator, AdaptiveStepGrowsBackWhenCalm) {
   sim.set_pinned({0});
   for (int i = 0; i < 200; ++i) ASSERT_TRUE(sim.step().ok);
   EXPECT_DOUBLE_EQ(sim.current_dt(), o.dt);  // nothing dramatic happened: full step throughout
+}
+
+// A heavy cloth hanging from two corners: its elastic rest lies far beyond the length limit, so the
+// springs near the corners stay held at the limit, and every step's integrator pulls them past it.
+// Judged with them, no step counts calm and the step stays where the fall left it; without them it
+// stays at dt, with the limit holding throughout.
+TEST(Simulator, AdaptiveStepLeavesSpringsHeldAtTheLimitOutOfTheRise) {
+  const int n = 16;
+  const TriangleMesh g = make_grid({1.0, 1.0}, {n, n}, {0, 0, 0}, {0, 0, 1});
+  ClothBuildOptions b;
+  b.total_mass = 3.0;
+  const ClothModel model = build_cloth(g, soft_fabric(), b);
+  struct Run {
+    int steps = 0;
+    double shortest = 1.0, longest_late = 0.0, shortest_late = 1.0, worst = 0.0;  // late: 1–2 s
+  };
+  auto run = [&](bool skip_held, double dt = SimulationOptions().dt) {
+    SimulationOptions o;
+    o.dt = dt;
+    o.strain_limit_iterations = 1000;
+    o.rise_skips_held_springs = skip_held;
+    ClothSimulator sim(model, o);
+    sim.set_pinned(top_corners(n));
+    Run r;
+    while (sim.time() < 2.0) {
+      const StepResult s = sim.step();
+      EXPECT_TRUE(s.ok) << s.failure;
+      if (!s.ok) break;
+      ++r.steps;
+      r.shortest = std::min(r.shortest, s.dt);
+      if (sim.time() > 1.0) {
+        r.longest_late = std::max(r.longest_late, s.dt);
+        r.shortest_late = std::min(r.shortest_late, s.dt);
+      }
+      r.worst = std::max(r.worst, sim.max_strain());
+    }
+    return r;
+  };
+  const Run judged = run(false), skipped = run(true), long_steps = run(true, 1.0 / 30);
+  std::cout << "left out, steps of up to 1/30 s: shortest " << long_steps.shortest << " s\n";
+  for (const Run* r : {&judged, &skipped})
+    std::cout << (r == &judged ? "held springs judged: " : "left out: ") << r->steps << " steps, shortest "
+              << r->shortest << " s, " << r->shortest_late << "–" << r->longest_late << " s in the second second\n";
+  const double dt = SimulationOptions().dt;
+  EXPECT_LE(judged.longest_late, dt / 2);
+  EXPECT_DOUBLE_EQ(skipped.shortest_late, dt);
+  EXPECT_LT(skipped.steps, 0.6 * judged.steps);
+  // The rise of the springs below the limit still halves a step: the fall at up to 1/30 s.
+  EXPECT_LE(long_steps.shortest, 1.0 / 120);
+  for (const Run& r : {judged, skipped, long_steps}) EXPECT_LE(r.worst, 0.1 + 1e-3);
 }
 
 // The stiff-robust integrator: very stiff springs at a film frame's step, released from a

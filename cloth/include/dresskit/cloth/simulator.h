@@ -131,6 +131,14 @@ struct SimulationOptions {
   bool adaptive = true;
   double dt_min = 1e-6;            ///< [s]
   double max_strain_change = 0.05; ///< per step [unitless]
+  /// Leave the springs held at the length limit when a step starts (strain within 0.001 of
+  /// strain_limit, with strain limiting on) out of that rise. The integrator pulls such a spring
+  /// towards its elastic rest beyond the limit, and the length limit takes it back, at every step,
+  /// by an amount that halving the step shrinks little: where a garment holds springs so for good
+  /// (a pattern whose seams join edges of unequal length), their rise of about 0.02 a step keeps
+  /// every step from counting calm, and the step never doubles back. Off by default; `dress`
+  /// settles with it when a garment is sewn from a pattern.
+  bool rise_skips_held_springs = false;
   /// Adaptive stepping near colliders: a particle within one spring length of a collider moves at
   /// most this fraction of its springs' mean rest length per step (0: no such bound) [unitless].
   double contact_travel = 1.0;
@@ -164,7 +172,9 @@ struct StepResult {
   SelfCollisionResult self;  ///< cloth–cloth collisions of this step
   int stitches_sewn = 0;     ///< stitches newly sewn (within the seam tolerance) in this step
   double dt = 0.0;           ///< the step taken [s] (adaptive stepping may shrink it)
-  double integrator_strain = 0.0;  ///< largest structural strain right after the integrator [unitless]
+  /// Largest structural strain right after the integrator over the springs the adaptive step
+  /// judges (clear of contacts, and of the length limit with rise_skips_held_springs) [unitless].
+  double integrator_strain = 0.0;
   double strain = 0.0;             ///< largest structural strain at the end of the step [unitless]
   int retries = 0;           ///< halvings before the step succeeded (adaptive stepping)
   /// Projective dynamics: the largest force left unbalanced on a free particle at the start of the
@@ -301,8 +311,10 @@ class ClothSimulator {
   void restore(const Snapshot& s);
   /// Largest structural strain over the springs with neither end within a collider's margin at the
   /// start of the step (the adaptive step's measure: contacts move particles by distances that a
-  /// smaller step does not shrink).
+  /// smaller step does not shrink), nor marked in held_at_limit_.
   double free_strain() const;
+  /// Marks the springs held at the length limit at the current positions (rise_skips_held_springs).
+  void mark_held_springs();
   /// Adaptive stepping: the largest step that the contacts and (symplectic Euler) the stiffest
   /// spring allow at the current state [s] (infinity when nothing bounds it).
   double step_bound();
@@ -327,6 +339,7 @@ class ClothSimulator {
   double dt_ = 0.0;
   double dt_next_ = 0.0;  ///< adaptive stepping: the controller's next step [s] (0: not started)
   int calm_steps_ = 0;
+  std::vector<char> held_at_limit_;  ///< per spring: left out of free_strain (empty: none)
   Eigen::VectorXd contact_length_;  ///< per particle: mean structural rest length [m] (step_bound)
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
