@@ -103,8 +103,9 @@ int main(int argc, char** argv) {
       }
       const DressedGarment& d = r.garments[0];
       double settle = 0.0;
+      std::string settled;
       for (const DressStage& s : r.stages)
-        if (s.name == "settle") settle = s.seconds;
+        if (s.name == "settle") settle = s.seconds, settled = s.reason;
       const TriangleBvh body(r.body.V, r.body.F);
       int near = 0;
       for (Eigen::Index i = 0; i < d.dressed.rows(); ++i) {
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
                 << " pairs unwelded, crossings sewn " << d.crossings_authored << " dressed "
                 << d.crossings_dressed << ", inside " << d.inside_dressed << ", near "
                 << double(near) / double(d.dressed.rows()) << ", area change " << area_change
-                << std::endl;
+                << "; settle: " << settled << std::endl;
     }
   return 0;
 }
