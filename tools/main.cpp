@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ValidationError& e) {  // a value its option's check refuses: out of range
+    return fail(e.what(), ExitCode::bad_input);
   } catch (const CLI::ParseError& e) {
     return fail(std::string(e.what()) + " (see --help)", ExitCode::usage);
   }

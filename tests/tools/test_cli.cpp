@@ -39,10 +39,27 @@ TEST(Cli, UsageErrorsExit64) {
   test::TempDir dir;
   EXPECT_EQ(run(dir, "").code, 64);
   EXPECT_EQ(run(dir, "frobnicate").code, 64);
-  EXPECT_EQ(run(dir, "info").code, 64);
-  const CliRun r = run(dir, "clean x.obj -o y.obj --remesh -1");
+  const CliRun r = run(dir, "info");
   EXPECT_EQ(r.code, 64);
   EXPECT_EQ(lines(r.err), 1) << r.err;
+}
+
+// A value its option's check refuses is bad input, not a usage error: exit 2, one line naming it.
+TEST(Cli, OptionValuesOutOfRangeExit2NamingTheOption) {
+  test::TempDir dir;
+  save_mesh(fixtures::cube(1.0), dir.file("in.obj"));
+  for (const auto& [args, option] : std::vector<std::pair<std::string, std::string>>{
+           {"clean " + dir.file("in.obj") + " -o " + dir.file("out.obj") + " --remesh -1", "--remesh: -1 is not a positive number"},
+           {"pattern " + dir.file("p.json") + " -o " + dir.file("p") + " --length-ratio 0.5", "--length-ratio"},
+           {"dress " + dir.file("in.obj") + " " + dir.file("in.obj") + " -o " + dir.file("p") + " --quality best", "--quality"},
+           {"demo -o " + dir.file("p") + " --quality best", "--quality"}}) {
+    const CliRun r = run(dir, args);
+    EXPECT_EQ(r.code, 2) << args;
+    EXPECT_EQ(lines(r.err), 1) << r.err;
+    EXPECT_NE(r.err.find(option), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.obj")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("p")));
 }
 
 TEST(Cli, InfoTextAndJson) {
@@ -77,6 +94,19 @@ TEST(Cli, CleanWritesTheRepairedMeshAndSaysWhatItFixed) {
   EXPECT_NE(r.out.find("closed and outward"), std::string::npos) << r.out;
   EXPECT_EQ(slurp(dir.file("in.obj")), before);  // input untouched
   EXPECT_EQ(load_mesh(dir.file("out.ply")).num_faces(), 12);
+}
+
+TEST(Cli, CleanMakesTheFolderItsOutputGoesInto) {
+  test::TempDir dir;
+  save_mesh(fixtures::cube(1.0), dir.file("in.obj"));
+  CliRun r = run(dir, "clean " + dir.file("in.obj") + " -o " + dir.file("new/sub/out.ply"));
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(load_mesh(dir.file("new/sub/out.ply")).num_faces(), 12);
+  // Under a file no folder can be made: exit 3, nothing written.
+  r = run(dir, "clean " + dir.file("in.obj") + " -o " + dir.file("in.obj") + "/sub/out.ply");
+  EXPECT_EQ(r.code, 3);
+  EXPECT_EQ(lines(r.err), 1) << r.err;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir.file("in.obj")));
 }
 
 TEST(Cli, CleanRefusesToOverwriteItsInput) {

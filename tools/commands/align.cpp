@@ -80,7 +80,7 @@ void AlignCommand::add_to(CLI::App& app) {
                     "--rigid: start ICP from the inputs' placement (no candidate orientations)");
   command->add_option("--max-iterations", global.icp.max_iterations, "ICP iterations per stage")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   option_with_default(command, "--min-fitness", min_fitness,
                       "--rigid: fail below this fraction of matched points");
   command->add_option("--garment-labels", garment_labels,

@@ -15,18 +15,19 @@ void CleanCommand::add_to(CLI::App& app) {
   command->add_option("-o,--output", output, "output mesh (obj, ply, off, stl, glb, gltf, fbx)")->required();
   command->add_option("--remesh", options.remesh_edge_length,
                       "isotropic remeshing to this edge length [m, after unit conversion]")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command->add_flag("--fill-holes", options.fill_holes, "fill small holes");
   command->add_option("--max-hole-edges", options.max_hole_edges, "largest hole to fill [boundary edges]")
       ->capture_default_str()
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   command->add_flag("--largest-component", options.keep_largest_component,
                     "keep only the largest connected component");
   command->add_flag("--json", as_json, "print JSON");
 }
 
 namespace {
-// Refuses an output path that is the input, or whose extension cannot be written.
+// Refuses an output path that is the input, whose extension cannot be written, or that lies under
+// a file (its missing folders are made when the result is written).
 void check_output(const std::string& out, const std::string& input) {
   std::error_code ec;
   if (fs::exists(out, ec) && fs::equivalent(out, input, ec)) throw InputError(out + ": refusing to overwrite the input");
@@ -35,8 +36,13 @@ void check_output(const std::string& out, const std::string& input) {
     for (const auto& e : saveable_extensions()) list += (list.empty() ? "" : ", ") + e;
     throw InputError(out + ": cannot write '" + fs::path(out).extension().string() + "' files (supported: " + list + ")");
   }
-  const fs::path dir = fs::path(out).parent_path();
-  if (!dir.empty() && !fs::is_directory(dir, ec)) throw OutputError(out + ": no such directory");
+  for (fs::path dir = fs::path(out).parent_path(); !dir.empty(); dir = dir.parent_path()) {
+    if (fs::exists(dir, ec)) {
+      if (!fs::is_directory(dir, ec)) throw OutputError(out + ": " + dir.string() + " is not a directory");
+      break;
+    }
+    if (dir == dir.parent_path()) break;
+  }
 }
 }  // namespace
 
@@ -44,6 +50,10 @@ int CleanCommand::run() {
   check_output(output, mesh.path);
   const CleanupResult r = cleanup_mesh(mesh.load(), options);
   validate_mesh(r.mesh, mesh.path + " after cleanup");  // never write an empty or broken result
+  const fs::path dir = fs::path(output).parent_path();
+  std::error_code ec;
+  if (!dir.empty() && !fs::is_directory(dir, ec) && (!fs::create_directories(dir, ec) || ec))
+    throw OutputError(output + ": cannot make the folder " + dir.string() + (ec ? ": " + ec.message() : ""));
   save_mesh(r.mesh, output);
   if (as_json) {
     const json j = {{"input", mesh.path}, {"output", output}, {"changes", r.changes()}, {"result", topology_json(r.mesh)}};

@@ -2,7 +2,9 @@
 // A command of dress-a-mesh: it adds its arguments to the app and runs when it is the one chosen.
 // Errors are thrown (InputError, OutputError, ...); main maps them to exit codes (docs/cli.md).
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
+#include <string>
 #include <nlohmann/json.hpp>
 
 // The commands call every library by its plain names (each command file includes the headers it uses).
@@ -33,6 +35,24 @@ using json = nlohmann::json;
 template <typename T>
 CLI::Option* option_with_default(CLI::App* command, const std::string& name, T& value, const std::string& help) {
   return command->add_option(name, value, help)->capture_default_str();
+}
+
+/// A check for a number option: a finite value above zero ("--remesh: -1 is not a positive number";
+/// CLI::PositiveNumber's message spells out the largest double).
+inline CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        std::size_t used = 0;
+        double value = 0.0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used == 0 || used != text.size()) return "'" + text + "' is not a number";
+        return std::isfinite(value) && value > 0.0 ? std::string() : text + " is not a positive number";
+      },
+      "POSITIVE", "positive");
 }
 
 struct Command {

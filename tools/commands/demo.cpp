@@ -22,7 +22,8 @@ void DemoCommand::add_to(CLI::App& app) {
   command->add_option("--dress-seconds", seconds,
                       "simulated settling at most [s], up to 60 (default: the quality's, 0.5, 1 or 2 s)");
   command->add_flag("--no-settle", no_settle, "write the garments as made, not settled");
-  option_with_default(command, "--quality", quality, "fast, balanced or accurate");
+  option_with_default(command, "--quality", quality, "fast, balanced or accurate")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   option_with_default(command, "--height", body.height, "mannequin height [m]");
   option_with_default(command, "--girth", body.girth, "mannequin girth scale");
   option_with_default(command, "--pose", pose, "a-pose or t-pose");

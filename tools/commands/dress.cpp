@@ -53,7 +53,8 @@ void DressCommand::add_to(CLI::App& app) {
                       "length unit of --pattern-body (overrides --units)");
   command->add_option("--pattern-body-labels", pattern_body_labels,
                       "part labels of --pattern-body (labels JSON): no segmentation of it");
-  option_with_default(command, "--quality", quality, "fast, balanced or accurate");
+  option_with_default(command, "--quality", quality, "fast, balanced or accurate")
+      ->check(CLI::IsMember({"fast", "balanced", "accurate"}));
   option_with_default(command, "--layers", layers,
                       "given: worn inside to outside in the order given; inferred: from the "
                       "garments' kinds (bottoms under tops; of one kind, the one lying farther out)");
