@@ -52,7 +52,8 @@ TEST(Cli, OptionValuesOutOfRangeExit2NamingTheOption) {
            {"clean " + dir.file("in.obj") + " -o " + dir.file("out.obj") + " --remesh -1", "--remesh: -1 is not a positive number"},
            {"pattern " + dir.file("p.json") + " -o " + dir.file("p") + " --length-ratio 0.5", "--length-ratio"},
            {"dress " + dir.file("in.obj") + " " + dir.file("in.obj") + " -o " + dir.file("p") + " --quality best", "--quality"},
-           {"demo -o " + dir.file("p") + " --quality best", "--quality"}}) {
+           {"demo -o " + dir.file("p") + " --quality best", "--quality"},
+           {"dress " + dir.file("in.obj") + " " + dir.file("in.obj") + " -o " + dir.file("p") + " --fabric silk", "--fabric"}}) {
     const CliRun r = run(dir, args);
     EXPECT_EQ(r.code, 2) << args;
     EXPECT_EQ(lines(r.err), 1) << r.err;

@@ -9,6 +9,7 @@
 #include <memory>
 #include <set>
 
+#include "dresskit/cloth/fabric.h"
 #include "dresskit/dressing/dress.h"
 #include "dresskit/dressing/outputs.h"
 #include "dresskit/mesh/errors.h"
@@ -37,7 +38,8 @@ void DressCommand::add_to(CLI::App& app) {
   // would take the body and garments given after it.
   command->add_option("--fabric", fabrics,
                       "fabric of each garment in order, one per --fabric (one: all of them); default gray-interlock")
-      ->allow_extra_args(false);
+      ->allow_extra_args(false)
+      ->check(CLI::IsMember(fabric_names()));
   command->add_option("--padding", paddings,
                       "padding of each garment in order (one: all of them): none, or heat (a double layer "
                       "as thick as heat conduction gives for its fabric, docs/dressing.md); default none")
