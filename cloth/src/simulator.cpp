@@ -366,8 +366,9 @@ double ClothSimulator::free_strain() const {
 void ClothSimulator::mark_held_springs() {
   held_at_limit_.clear();
   if (!options_.rise_skips_held_springs || !options_.strain_limiting) return;
-  // Within 0.001 of the limit: the length limit leaves a spring it corrected at the limit (within
-  // strain_limit_tolerance), and the springs around it a little below.
+  // From 0.001 below the limit up: the length limit leaves a spring it corrected at the limit
+  // (within strain_limit_tolerance) and the springs around it a little below; the contact passes
+  // after it can leave one a little beyond, which the next step's limit takes back as well.
   const double held = options_.strain_limit - 1e-3;
   const SpringSet& s = model_.springs;
   held_at_limit_.assign(static_cast<std::size_t>(s.size()), 0);

@@ -690,8 +690,9 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   o.colliders.push_back(Collider::mesh(body_distance));
   // A garment sewn from a pattern holds springs at their length limit for good where its seams join
   // edges of unequal length: the adaptive step leaves them out of the strain rise it judges.
-  o.rise_skips_held_springs = std::any_of(result.garments.begin(), result.garments.end(),
-                                          [](const DressedGarment& g) { return g.from_pattern; });
+  const bool sewn = std::any_of(result.garments.begin(), result.garments.end(),
+                                [](const DressedGarment& g) { return g.from_pattern; });
+  o.rise_skips_held_springs = sewn;
   std::vector<std::vector<int>> bands;  // trousers and skirts stay up by their waistband, held as by a belt
   {
     Stage stage(result, options, "settle");
@@ -773,18 +774,20 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       };
       // Settles again by `run`; the new run is kept where it ends with fewer crossings of the
       // garments' own than `before`, otherwise the earlier run is put back and `undo` called. `held`
-      // says which.
+      // says which (and what the kept run said of itself).
       const auto settle_again = [&](const std::string& how, int before, const std::function<void()>& run,
                                     const std::function<void()>& undo) {
         std::optional<ClothSimulator> earlier = std::move(sim);
         const RunResult earlier_run = result.settle;
         const std::vector<double> t = result.settle_time, e = result.settle_energy, st = result.settle_strain;
-        held += "; settled again " + how;
+        const std::string said = held;
         run();
+        const std::string its_own = held.substr(said.size());
+        held = said + "; settled again " + how;
         int after = 0;
         for (std::size_t k = 0; k < result.garments.size(); ++k) after += own_crossings(k);
         if (result.settle.ok && after < before) {
-          held += " (" + std::to_string(before) + " → " + counted(after, "crossing", "crossings") + ")";
+          held += " (" + std::to_string(before) + " → " + counted(after, "crossing", "crossings") + ")" + its_own;
           return;
         }
         held += ", not kept (" + (result.settle.ok ? counted(after, "crossing", "crossings") + " against " + std::to_string(before)
@@ -800,15 +803,13 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
       // crossings in one trial of three, none when they are judged): a settle that leaves a garment
       // crossing itself more often than sewn runs again judging them.
       std::vector<int> own(result.garments.size());
-      bool more = false;  // a garment crossing itself more often than authored (sewn)
       const auto count_own = [&] {
-        more = false;
-        for (std::size_t k = 0; k < result.garments.size(); ++k) {
-          own[k] = own_crossings(k);
-          more = more || own[k] > result.garments[k].crossings_authored;
-        }
+        for (std::size_t k = 0; k < result.garments.size(); ++k) own[k] = own_crossings(k);
       };
       count_own();
+      bool more = false;  // a pattern's garment crossing itself more often than sewn
+      for (std::size_t k = 0; k < result.garments.size(); ++k)
+        more = more || (result.garments[k].from_pattern && own[k] > result.garments[k].crossings_authored);
       if (result.settle.ok && o.rise_skips_held_springs && more) {
         const double change = o.max_strain_change;
         o.rise_skips_held_springs = false;
@@ -863,6 +864,7 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
     } else if (!result.settled || !result.settle.ok) {
       stage.done(false, "padding grows over the settled garments: not settled");
     } else {
+      o.rise_skips_held_springs = sewn;  // as the settle began, whichever settle was kept
       const PaddingRun p = pad_garments(result.garments, fabrics, *body_distance, o, separation, duration, bands, options.on_settle);
       result.padding_ran = true;
       result.padding_settle = p.run;

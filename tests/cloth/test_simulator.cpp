@@ -337,10 +337,10 @@ TEST(Simulator, AdaptiveStepLeavesSpringsHeldAtTheLimitOutOfTheRise) {
     int steps = 0;
     double shortest = 1.0, longest_late = 0.0, shortest_late = 1.0, worst = 0.0;  // late: 1–2 s
   };
-  auto run = [&](bool skip_held, double dt = SimulationOptions().dt) {
+  auto run = [&](bool skip_held, double dt = SimulationOptions().dt, int sweeps = 1000) {
     SimulationOptions o;
     o.dt = dt;
-    o.strain_limit_iterations = 1000;
+    o.strain_limit_iterations = sweeps;
     o.rise_skips_held_springs = skip_held;
     ClothSimulator sim(model, o);
     sim.set_pinned(top_corners(n));
@@ -371,6 +371,12 @@ TEST(Simulator, AdaptiveStepLeavesSpringsHeldAtTheLimitOutOfTheRise) {
   // The rise of the springs below the limit still halves a step: the fall at up to 1/30 s.
   EXPECT_LE(long_steps.shortest, 1.0 / 120);
   for (const Run& r : {judged, skipped, long_steps}) EXPECT_LE(r.worst, 0.1 + 1e-3);
+  // With the default 100 sweeps the limit cannot always bring this heavy cloth back: left out, the
+  // springs beyond it no longer shrink the step, and the largest strain creeps further.
+  const Run judged_100 = run(false, SimulationOptions().dt, 100), skipped_100 = run(true, SimulationOptions().dt, 100);
+  std::cout << "100 sweeps: largest strain " << judged_100.worst << " judged, " << skipped_100.worst << " left out\n";
+  EXPECT_LT(judged_100.worst, 0.105);
+  EXPECT_LT(skipped_100.worst, 0.115);
 }
 
 // The stiff-robust integrator: very stiff springs at a film frame's step, released from a

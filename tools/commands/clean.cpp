@@ -50,11 +50,22 @@ int CleanCommand::run() {
   check_output(output, mesh.path);
   const CleanupResult r = cleanup_mesh(mesh.load(), options);
   validate_mesh(r.mesh, mesh.path + " after cleanup");  // never write an empty or broken result
-  const fs::path dir = fs::path(output).parent_path();
+  // The missing folders are made, and removed again if the mesh cannot be written.
+  fs::path made;
   std::error_code ec;
-  if (!dir.empty() && !fs::is_directory(dir, ec) && (!fs::create_directories(dir, ec) || ec))
-    throw OutputError(output + ": cannot make the folder " + dir.string() + (ec ? ": " + ec.message() : ""));
-  save_mesh(r.mesh, output);
+  for (fs::path dir = fs::path(output).parent_path(); !dir.empty() && !fs::exists(dir, ec); dir = dir.parent_path()) {
+    made = dir;
+    if (dir == dir.parent_path()) break;
+  }
+  if (!made.empty() && (!fs::create_directories(fs::path(output).parent_path(), ec) || ec))
+    throw OutputError(output + ": cannot make the folder " + fs::path(output).parent_path().string() +
+                      (ec ? ": " + ec.message() : ""));
+  try {
+    save_mesh(r.mesh, output);
+  } catch (...) {
+    if (!made.empty()) fs::remove_all(made, ec);
+    throw;
+  }
   if (as_json) {
     const json j = {{"input", mesh.path}, {"output", output}, {"changes", r.changes()}, {"result", topology_json(r.mesh)}};
     std::cout << j.dump(2) << "\n";

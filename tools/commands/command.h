@@ -38,7 +38,8 @@ CLI::Option* option_with_default(CLI::App* command, const std::string& name, T& 
 }
 
 /// A check for a number option: a finite value above zero ("--remesh: -1 is not a positive number";
-/// CLI::PositiveNumber's message spells out the largest double).
+/// CLI::PositiveNumber's message spells out the largest double). Text that is no number is left
+/// to the option's conversion, a usage error as for every number option.
 inline CLI::Validator positive_number() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
@@ -47,9 +48,9 @@ inline CLI::Validator positive_number() {
         try {
           value = std::stod(text, &used);
         } catch (const std::exception&) {
-          used = 0;
+          return {};
         }
-        if (used == 0 || used != text.size()) return "'" + text + "' is not a number";
+        if (used != text.size()) return {};
         return std::isfinite(value) && value > 0.0 ? std::string() : text + " is not a positive number";
       },
       "POSITIVE", "positive");

@@ -131,13 +131,15 @@ struct SimulationOptions {
   bool adaptive = true;
   double dt_min = 1e-6;            ///< [s]
   double max_strain_change = 0.05; ///< per step [unitless]
-  /// Leave the springs held at the length limit when a step starts (strain within 0.001 of
-  /// strain_limit, with strain limiting on) out of that rise. The integrator pulls such a spring
+  /// Leave the springs held at the length limit when a step starts (strain from 0.001 below
+  /// strain_limit up, with strain limiting on) out of that rise. The integrator pulls such a spring
   /// towards its elastic rest beyond the limit, and the length limit takes it back, at every step,
   /// by an amount that halving the step shrinks little: where a garment holds springs so for good
   /// (a pattern whose seams join edges of unequal length), their rise of about 0.02 a step keeps
   /// every step from counting calm, and the step never doubles back. Off by default; `dress`
-  /// settles with it when a garment is sewn from a pattern.
+  /// settles with it when a garment is sewn from a pattern. Springs the length limit cannot bring
+  /// back (too few strain_limit_iterations) then no longer shrink the step: a heavy cloth hanging
+  /// from two corners reaches 10.9 % with 100 sweeps, against 10.3 % judged by them.
   bool rise_skips_held_springs = false;
   /// Adaptive stepping near colliders: a particle within one spring length of a collider moves at
   /// most this fraction of its springs' mean rest length per step (0: no such bound) [unitless].
