@@ -382,12 +382,27 @@ bool names_sleeves(const std::string& part) { return part.rfind("sleeve", 0) == 
 /// (trousers, a skirt). A sewn pattern says it by its panels: one of a bodice (GarmentCode's
 /// "…torso…") or a sleeve makes a top, whatever the segmentation of its sewn mesh (a hoody's sleeves,
 /// hanging in A-pose, are cut as legs).
+namespace {
+
+/// The names of the parts that have vertices (a label file may name parts a garment lacks).
+std::vector<std::string> parts_present(const TriangleMesh& m) {
+  std::vector<bool> used(m.label_names.size(), false);
+  for (Eigen::Index i = 0; i < m.labels.size(); ++i)
+    if (m.labels(i) >= 0 && static_cast<std::size_t>(m.labels(i)) < used.size()) used[m.labels(i)] = true;
+  std::vector<std::string> names;
+  for (std::size_t k = 0; k < used.size(); ++k)
+    if (used[k]) names.push_back(m.label_names[k]);
+  return names;
+}
+
+}  // namespace
+
 bool is_top(const DressedGarment& g) {
   if (g.from_pattern)
     return std::any_of(g.pattern.panels.begin(), g.pattern.panels.end(), [](const std::string& panel) {
       return panel.find("torso") != std::string::npos || panel.find("sleeve") != std::string::npos;
     });
-  const auto& names = g.mesh.label_names;
+  const std::vector<std::string> names = parts_present(g.mesh);
   return std::any_of(names.begin(), names.end(), names_sleeves) || std::none_of(names.begin(), names.end(), names_legs);
 }
 
@@ -397,7 +412,7 @@ bool covers_legs(const DressedGarment& g) {
       return panel.find("skirt") != std::string::npos || panel.find("pant") != std::string::npos ||
              panel.find("leg") != std::string::npos;
     });
-  const auto& names = g.mesh.label_names;
+  const std::vector<std::string> names = parts_present(g.mesh);
   return std::any_of(names.begin(), names.end(), names_legs);
 }
 
