@@ -42,12 +42,13 @@ double ClothSimulator::max_strain() const {
 }
 
 namespace {
-/// The structural spring with the largest strain at x: index and strain (−1 and 0 without any).
-std::pair<int, double> worst_structural(const SpringSet& s, const Eigen::MatrixX3d& x) {
+/// The structural spring stretched most at x as blow-up judges it (elongation over the larger of
+/// its rest length and `floor`): index and that stretch (−1 and 0 without any).
+std::pair<int, double> worst_structural(const SpringSet& s, const Eigen::MatrixX3d& x, double floor) {
   std::pair<int, double> worst{-1, 0.0};
   for (int k = 0; k < s.size(); ++k) {
     if (s.type[k] != SpringType::structural) continue;
-    const double e = (x.row(s.j[k]) - x.row(s.i[k])).norm() / s.rest_length[k] - 1.0;
+    const double e = ((x.row(s.j[k]) - x.row(s.i[k])).norm() - s.rest_length[k]) / std::max(s.rest_length[k], floor);
     if (worst.first < 0 || e > worst.second) worst = {k, e};
   }
   return worst;
@@ -60,9 +61,21 @@ std::string fixed(double value, int digits) {
 }
 }  // namespace
 
+double blow_up_stretch(const ClothModel& model, const Eigen::MatrixX3d& x) {
+  double sum = 0.0;
+  for (double L : model.springs.rest_length) sum += L;
+  const double floor = 0.25 * sum / std::max(1, model.springs.size());
+  return worst_structural(model.springs, x, floor).second;
+}
+
+double ClothSimulator::blow_up_stretch(const Eigen::MatrixX3d& x) const {
+  return worst_structural(model_.springs, x, blow_up_length_).second;
+}
+
 std::string ClothSimulator::blow_up_report(const Eigen::MatrixX3d& x_integrated, double t) const {
   const SpringSet& s = model_.springs;
-  const auto [k, strain] = worst_structural(s, x_);
+  const int k = worst_structural(s, x_, blow_up_length_).first;
+  const double strain = (x_.row(s.j[k]) - x_.row(s.i[k])).norm() / s.rest_length[k] - 1.0;
   const double after_integrator = (x_integrated.row(s.j[k]) - x_integrated.row(s.i[k])).norm() / s.rest_length[k] - 1.0;
   const bool by_integrator = after_integrator > options_.blow_up_strain;
   return "blow-up at t = " + fixed(t, 4) + " s: structural spring " + std::to_string(k) + " (particles " +

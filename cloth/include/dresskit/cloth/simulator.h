@@ -157,6 +157,11 @@ struct PinMotion {
   double until = 1e30;                               ///< [s]
 };
 
+/// The largest stretch of the model's structural springs at positions x as a step's blow-up check
+/// judges it (SimulationOptions::blow_up_strain): the elongation over the rest length, or over a
+/// quarter of the mean spring length for a shorter spring [unitless].
+double blow_up_stretch(const ClothModel& model, const Eigen::MatrixX3d& x);
+
 /// Throws InputError naming the field when an option is out of range (dt ≤ 0, negative damping, ...).
 void check_options(const SimulationOptions& options);
 
@@ -324,6 +329,11 @@ class ClothSimulator {
   /// strain, the time, and whether the integrator or the passes after it (positions x_integrated
   /// in between) stretched it.
   std::string blow_up_report(const Eigen::MatrixX3d& x_integrated, double t) const;
+  /// The largest structural spring stretch as blow_up_strain judges it: elongation over the rest
+  /// length, or over blow_up_length_ for a shorter spring (a sub-millimetre spring of a garment's
+  /// detail moved a millimetre by a contact has not diverged; a step that diverges stretches
+  /// springs by lengths, not by ratios of tiny ones).
+  double blow_up_stretch(const Eigen::MatrixX3d& x) const;
   Eigen::Vector3d wind_at(double t) const;
   double allowed_length(int s) const;
 
@@ -345,6 +355,7 @@ class ClothSimulator {
   Eigen::VectorXd contact_length_;  ///< per particle: mean structural rest length [m] (step_bound)
   std::vector<double> inv_rest_;                     ///< 1 / rest length per spring (force loop)
   double layer_push_cap_ = 0.0;                      ///< largest layer-guard push per step [m]
+  double blow_up_length_ = 0.0;  ///< a quarter of the mean spring length: blow_up_stretch's floor [m]
   double deep_push_speed_ = 0.0;  ///< largest speed out of a collider for a particle that started inside [m/s]
   /// Particles in a penalty zone at the current positions, found by the collision pass that ends
   /// every step (so the next step's forces need no distance query): particle, collider, outward
