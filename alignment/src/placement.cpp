@@ -292,20 +292,72 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
     out.V.row(v) = (sum / (w_own + others)).transpose();
   }
 
-  // Rounds of strain limiting (edges over the limit shortened, both ends moved) and push out of the
-  // body (along the normal of the nearest body vertex, to `clearance` outside).
+  push_out_of_body(garment, body, body_normals, options, 1.0, out.global_scale, out);
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+namespace {
+
+/// The garment's edges (smaller index first) and their lengths [m].
+void garment_edges(const TriangleMesh& garment, std::vector<std::pair<int, int>>& edges, std::vector<double>& rest) {
   std::set<std::pair<int, int>> edge_set;
   for (int f = 0; f < garment.num_faces(); ++f)
     for (int k = 0; k < 3; ++k) {
       const int a = garment.F(f, k), b = garment.F(f, (k + 1) % 3);
       edge_set.insert({std::min(a, b), std::max(a, b)});
     }
-  const std::vector<std::pair<int, int>> edges(edge_set.begin(), edge_set.end());
-  std::vector<double> rest(edges.size());
+  edges.assign(edge_set.begin(), edge_set.end());
+  rest.resize(edges.size());
   for (std::size_t e = 0; e < edges.size(); ++e)
     rest[e] = (garment.V.row(edges[e].first) - garment.V.row(edges[e].second)).norm();
+}
+
+/// Gauss–Seidel sweeps shortening edges longer than (1 + max_edge_stretch) × scale × rest, both
+/// ends moved; the edges over the limit in the first sweep.
+int limit_edge_stretch(const std::vector<std::pair<int, int>>& edges, const std::vector<double>& rest, double scale,
+                       const PlacementOptions& options, Eigen::MatrixX3d& V) {
+  int first = 0;
+  for (int sweep = 0; sweep < options.stretch_sweeps; ++sweep) {
+    int limited = 0;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const auto [a, b] = edges[e];
+      const Eigen::RowVector3d d = V.row(b) - V.row(a);
+      const double length = d.norm(), limit = (1.0 + options.max_edge_stretch) * scale * rest[e];
+      if (length <= limit) continue;
+      const Eigen::RowVector3d shift = 0.5 * (length - limit) / length * d;
+      V.row(a) += shift;
+      V.row(b) -= shift;
+      ++limited;
+    }
+    if (sweep == 0) first = limited;
+  }
+  return first;
+}
+
+}  // namespace
+
+int limit_stretch(const TriangleMesh& garment, double scale, const PlacementOptions& options, Eigen::MatrixX3d& V) {
+  std::vector<std::pair<int, int>> edges;
+  std::vector<double> rest;
+  garment_edges(garment, edges, rest);
+  return limit_edge_stretch(edges, rest, scale, options, V);
+}
+
+void push_out_of_body(const TriangleMesh& garment, const TriangleMesh& body, const Eigen::MatrixX3d& body_normals,
+                      const PlacementOptions& options, double limit_scale, double reach_scale, PlacementResult& out) {
+  // Rounds of strain limiting (edges over the limit shortened, both ends moved) and push out of the
+  // body (along the normal of the nearest body vertex, to `clearance` outside).
+  std::vector<std::pair<int, int>> edges;
+  std::vector<double> rest;
+  garment_edges(garment, edges, rest);
   const PointLocator body_points(body.V);
   std::vector<bool> moved(garment.num_vertices(), false);
+  std::vector<std::vector<int>> neighbours, body_neighbours;
+  if (options.push_rings > 0) {
+    neighbours = vertex_neighbours(garment.F, garment.num_vertices());
+    body_neighbours = vertex_neighbours(body.F, body.num_vertices());
+  }
   // Layers: the pieces ordered by the height of their tops, the lowest innermost; per outer vertex
   // the pieces inside it (their vertices' locators) and how far across the body's surface a
   // vertex of one may be from it and still lie under it (two of that piece's mean edges).
@@ -329,7 +381,7 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
   }
   for (std::size_t e = 0; e < edges.size(); ++e) {
     const int c = piece_of[edges[e].first];
-    edge_sum[c] += rest[e] * out.global_scale;
+    edge_sum[c] += rest[e] * reach_scale;
     ++edge_count[c];
   }
   std::vector<double> reach(pieces);  // two mean edges of the piece, as placed
@@ -344,38 +396,65 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
   for (int c : order) out.layer_pieces.push_back(first_vertex[c]);
   const bool layered = options.layer_gap >= 0.0 && pieces > 1;
   std::vector<bool> layer_moved(garment.num_vertices(), false);
+  const auto limit_stretch = [&] {
+    out.stretch_limited_edges = limit_edge_stretch(edges, rest, limit_scale, options, out.V);
+  };
   for (int it = 0; it < options.push_iterations; ++it) {
-    for (int sweep = 0; sweep < options.stretch_sweeps; ++sweep) {
-      int limited = 0;
-      for (std::size_t e = 0; e < edges.size(); ++e) {
-        const auto [a, b] = edges[e];
-        const Eigen::RowVector3d d = out.V.row(b) - out.V.row(a);
-        const double length = d.norm(), limit = (1.0 + options.max_edge_stretch) * rest[e];
-        if (length <= limit) continue;
-        const Eigen::RowVector3d shift = 0.5 * (length - limit) / length * d;
-        out.V.row(a) += shift;
-        out.V.row(b) -= shift;
-        ++limited;
-      }
-      if (sweep == 0) out.stretch_limited_edges = limited;
-    }
+    limit_stretch();
     // The inner pieces where they are now (they move in the rounds too).
     std::vector<std::unique_ptr<PointLocator>> piece_points(pieces);
     if (layered)
       for (int c = 0; c < pieces; ++c)
         piece_points[c] = std::make_unique<PointLocator>(gather(out.V, {}, piece_rows[c]).V);
+    // With push_rings, every sheet over one place of the body is pushed as far as the one that
+    // lies deepest (a button as far as the cloth under it): the pushes needed are gathered per body
+    // vertex, spread over push_rings rings of the body, each vertex pushed as far as its nearest
+    // body vertex says, and the pushes then smoothed over as many rings of the garment, so that it
+    // leaves the body as a bulge rather than a tent of stretched edges.
+    Eigen::MatrixX3d push = Eigen::MatrixX3d::Zero(garment.num_vertices(), 3);
+    if (options.push_rings > 0) {
+      Eigen::VectorXd need = Eigen::VectorXd::Zero(body.num_vertices());
+      std::vector<int> nearest(static_cast<std::size_t>(garment.num_vertices()));
+      for (int v = 0; v < garment.num_vertices(); ++v) {
+        const Eigen::Vector3d x = out.V.row(v).transpose();
+        const int b = nearest[v] = body_points.nearest(x);
+        const double s = (x - body.V.row(b).transpose()).dot(body_normals.row(b).transpose());
+        need(b) = std::max(need(b), options.clearance - s);
+      }
+      for (int ring = 0; ring < options.push_rings; ++ring) {
+        Eigen::VectorXd spread = need;
+        for (int b = 0; b < body.num_vertices(); ++b)
+          for (int c : body_neighbours[b]) spread(b) = std::max(spread(b), need(c));
+        need.swap(spread);
+      }
+      for (int v = 0; v < garment.num_vertices(); ++v)
+        push.row(v) = std::max(0.0, need(nearest[v])) * body_normals.row(nearest[v]);
+      for (int ring = 0; ring < options.push_rings; ++ring) {
+        Eigen::MatrixX3d smooth = push;
+        for (int v = 0; v < garment.num_vertices(); ++v) {
+          if (neighbours[v].empty()) continue;
+          smooth.row(v) = 0.5 * push.row(v);
+          for (int u : neighbours[v]) smooth.row(v) += 0.5 * push.row(u) / static_cast<double>(neighbours[v].size());
+        }
+        push.swap(smooth);
+      }
+    }
     for (int rank = 0; rank <= pieces; ++rank)
       for (int v : rank < pieces ? piece_rows[order[rank]] : loose) {
         Eigen::Vector3d x = out.V.row(v).transpose();
         const int b = body_points.nearest(x);
         const Eigen::Vector3d n = body_normals.row(b).transpose();
         const double s = (x - body.V.row(b).transpose()).dot(n);
-        if (s < options.clearance) {
+        if (options.push_rings > 0) {
+          x += push.row(v).transpose();
+          moved[v] = moved[v] || push.row(v).squaredNorm() > 0.0;
+        } else if (s < options.clearance) {
           x += (options.clearance - s) * n;
           moved[v] = true;
         }
         for (int inner = 0; layered && rank < pieces && inner < rank; ++inner) {
           const int c = order[inner];
+          if (given && !options.pieces_of_a_layer_apart && layer(c) == layer(order[rank])) continue;
           const int u = piece_rows[c][piece_points[c]->nearest(x)];
           const Eigen::Vector3d d = x - out.V.row(u).transpose();
           const double above = d.dot(n);
@@ -388,10 +467,11 @@ PlacementResult place_garment(const TriangleMesh& garment, const TriangleMesh& b
         out.V.row(v) = x.transpose();
       }
   }
+  // With pushes spread, the rounds end by limiting the stretch once more: what that leaves inside
+  // the body by a little, the settle pushes out; edges stretched far it could not take.
+  if (options.push_rings > 0) limit_stretch();
   out.pushed_out = static_cast<int>(std::count(moved.begin(), moved.end(), true));
   out.layer_pushed = static_cast<int>(std::count(layer_moved.begin(), layer_moved.end(), true));
-  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return out;
 }
 
 double inside_fraction(const Eigen::MatrixX3d& points, const TriangleMesh& m) {

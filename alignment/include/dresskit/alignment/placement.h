@@ -53,8 +53,17 @@ struct PlacementOptions {
   double layer_gap = 0.003;
   /// Per garment vertex, its layer (0 = innermost) when an outfit's pieces are worn in a given
   /// order (several garment files placed together); empty = pieces ordered by the height of their
-  /// tops. Pieces of one layer are ordered by their tops too.
+  /// tops. Pieces of one layer are ordered by their tops too, and pushed out of one another when
+  /// pieces_of_a_layer_apart (false: a garment's own pieces — buttons, a collar, pockets — stay
+  /// as they are to each other).
   Eigen::VectorXi vertex_layers;
+  bool pieces_of_a_layer_apart = true;
+  /// Pushes out of the body shared: every sheet over one place of the body pushed as far as the
+  /// deepest one there (gathered per body vertex and spread over this many rings of the body), then
+  /// smoothed over as many rings of the garment, so that a garment leaves the body as a bulge, its
+  /// layered details (buttons, collars) with it, rather than as a tent of stretched edges; 0 = each
+  /// vertex pushed on its own.
+  int push_rings = 0;
 };
 
 struct PartPlacement {
@@ -88,6 +97,22 @@ struct PlacementResult {
 /// inputs cannot be used (no labels, no matched parts, unusable point sets).
 PlacementResult place_garment(const mesh::TriangleMesh& garment, const mesh::TriangleMesh& body,
                               const PlacementOptions& options = {});
+
+/// How a placement ends (place_garment's last step, and the dressing pipeline's after carrying a
+/// garment by its wearer): rounds of strain limiting — edges longer than (1 + max_edge_stretch) ×
+/// limit_scale × their length in `garment` shortened, both ends moved — and of pushes out of the
+/// body to `clearance` outside, along the normal of the nearest body vertex; pieces worn over others
+/// (PlacementOptions::layer_gap, vertex_layers) moved out over them, where a vertex of the inner
+/// piece lies within two of its mean edges (× reach_scale) across the body. Works on out.V; sets
+/// pushed_out, layer_pieces, layer_pushed and stretch_limited_edges.
+void push_out_of_body(const mesh::TriangleMesh& garment, const mesh::TriangleMesh& body,
+                      const Eigen::MatrixX3d& body_normals, const PlacementOptions& options, double limit_scale,
+                      double reach_scale, PlacementResult& out);
+
+/// Sweeps of position-based strain limiting on a garment at positions V (PlacementOptions::
+/// stretch_sweeps): each edge longer than (1 + max_edge_stretch) × scale × its length in `garment`
+/// shortened, both ends moved. Returns the edges over the limit in the first sweep.
+int limit_stretch(const mesh::TriangleMesh& garment, double scale, const PlacementOptions& options, Eigen::MatrixX3d& V);
 
 /// Comparison of a posed garment with a reference placement (same vertex order): `align --reference`.
 struct PlacementQuality {
