@@ -52,7 +52,7 @@ struct Garment {
   std::string outfit;     ///< e.g. female_casualsuit01 (the reference files' name)
   std::string path;       ///< as given to dress
   std::string units;      ///< as given to dress
-  std::string reference;  ///< ground truth in the file's units, or ""
+  std::string reference;  ///< ground truth (MakeHuman's refit, decimetres), or ""
 };
 
 struct Case {
@@ -108,7 +108,8 @@ std::vector<Case> matrix(const std::string& data, const std::string& scratch) {
   const std::vector<std::string> poses{"arms_down", "reach", "step_back", "knees_bent"};
   auto garment = [&](const std::string& outfit, const std::string& reference) {
     const std::string ref = data + "/" + reference;
-    return Garment{outfit, data + "/garments/mh_" + outfit + ".obj", "dm", fs::exists(ref) ? ref : ""};
+    return Garment{outfit, data + "/garments/mh_" + outfit + ".obj", "dm",
+                   !reference.empty() && fs::is_regular_file(ref) ? ref : ""};
   };
   std::vector<Case> cases;
   std::map<std::string, std::vector<std::string>> class_of;  // outfit → bodies it has references on
@@ -250,7 +251,9 @@ Judgement judge(const Case& c, const Outcome& run, const std::string& out, doubl
       fail(stem + " crosses itself " + std::to_string(dressed_crossings) + " times (" +
            std::to_string(authored_crossings) + " as authored)");
     if (!g.reference.empty()) {
-      const mesh::TriangleMesh reference = mesh::load_mesh(g.reference, units);
+      mesh::LoadOptions dm;
+      dm.units = mesh::Units::parse("dm");
+      const mesh::TriangleMesh reference = mesh::load_mesh(g.reference, dm);
       const double placed_pct = 100.0 * mean_distance(placed.V, reference.V) / height;
       const double dressed_pct = 100.0 * mean_distance(done.V, reference.V) / height;
       j.placed_pct = std::max(j.placed_pct, placed_pct);

@@ -44,9 +44,10 @@ constexpr StageEntry kStages[] = {
     {"load", stages::load},                  // meshes read; sewing patterns cut, sewn and welded
     {"clean", stages::clean},                // meshes the later stages cannot take repaired
     {"units", stages::units},                // a body of a person's height, garments of its size
-    {"segmentation", stages::segmentation},  // every mesh cut into named parts
+    {"segmentation", stages::segmentation},  // the body cut into named parts
+    {"wearer", stages::wearer},              // where each garment's wearer stood; its parts
     {"layers", stages::layers},              // garments ordered inside to outside
-    {"placement", stages::placement},        // garments not on the body fitted onto it part by part
+    {"placement", stages::placement},        // garments not on the body carried onto it
     {"thickness", stages::thickness},        // each cloth's thickness; padding's by heat conduction
     {"grading", stages::grading},            // outer garments moved out over inner ones
     {"settle", stages::settle},              // the garments settled on the body in the simulator

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "dresskit/alignment/wearer.h"
 #include "dresskit/cloth/fabric.h"
 #include "dresskit/cloth/mesh_distance.h"
 #include "dresskit/cloth/simulator.h"
@@ -27,6 +28,9 @@ struct Outfit {
   /// stages, settle. Moved out when the stages end.
   DressResult result;
   std::vector<cloth::Fabric> fabrics;  ///< per garment, in result.garments' order
+  /// Per garment (result.garments' order), the garment carried from its wearer onto the body
+  /// (wearer); empty for a sewing pattern, which is sewn around the body.
+  std::vector<std::optional<alignment::CarriedGarment>> carried;
 
   /// The body's distance (for sewing, untangling, grading and settling) and inside test, each
   /// built when first asked for (a stage that changes the body calls forget_body()).
@@ -71,6 +75,7 @@ StageReport load(Outfit& outfit, const DressOptions& options);
 StageReport clean(Outfit& outfit, const DressOptions& options);
 StageReport units(Outfit& outfit, const DressOptions& options);
 StageReport segmentation(Outfit& outfit, const DressOptions& options);
+StageReport wearer(Outfit& outfit, const DressOptions& options);
 StageReport layers(Outfit& outfit, const DressOptions& options);
 StageReport placement(Outfit& outfit, const DressOptions& options);
 StageReport thickness(Outfit& outfit, const DressOptions& options);

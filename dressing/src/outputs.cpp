@@ -94,22 +94,23 @@ json placement_json(const DressedGarment& g) {
   const PlacementResult& p = g.placement;
   out["global_scale"] = p.global_scale;
   out["global_method"] = p.global_method;
-  json matches = json::array();
-  for (const PartMatch& m : p.matching.matches)
-    matches.push_back({{"garment_part", m.garment_part}, {"body_part", m.body_part}, {"confidence", m.confidence}, {"by", m.by}});
-  out["matches"] = matches;
-  out["unmatched_garment_parts"] = p.matching.unmatched_garment_parts;
-  json parts = json::array();
-  for (const PartPlacement& q : p.parts) {
-    json e = {{"garment_part", q.garment_part}, {"body_part", q.body_part}, {"vertices", q.vertices},
-              {"used_icp", q.used_icp}, {"fitness", q.icp.fitness}, {"rmse_m", q.icp.rmse}};
-    if (!q.note.empty()) e["note"] = q.note;
-    parts.push_back(e);
-  }
-  out["parts"] = parts;
   out["pushed_out_vertices"] = p.pushed_out;
   out["seconds"] = p.seconds;
   return out;
+}
+
+/// A garment mesh's wearer: where the body stood in it, and how far carrying it moves it.
+json wearer_json(const DressedGarment& g) {
+  if (!g.wearer) return nullptr;
+  const alignment::WearerFit& w = *g.wearer;
+  return {{"scale", w.scale},
+          {"largest_turn_deg", alignment::largest_turn_degrees(w)},
+          {"rms_mm", 1e3 * alignment::rms_from_ease(w)},
+          {"cost_as_is_ratio", w.cost > 0.0 ? json(w.cost_as_is / w.cost) : json(nullptr)},
+          {"start", w.start},
+          {"iterations", w.iterations},
+          {"carry_move_p95_mm", 1e3 * g.carry_move},
+          {"seconds", w.seconds}};
 }
 
 const char* labels_source(bool given, const MeshFile& file) {
@@ -170,8 +171,9 @@ json report_json(const DressResult& r) {
          {"units", g.in_memory ? "m" : g.file.load.units.name},
          {"fabric", g.fabric},
          {"vertices", g.mesh.num_vertices()},
-         {"labels", labels_source(g.labels_from_file, g.file)},
+         {"labels", !g.labels_from_file && g.wearer ? "wearer" : labels_source(g.labels_from_file, g.file)},
          {"parts", parts_json(g.parts)},
+         {"wearer", wearer_json(g)},
          {"placement", placement_json(g)},
          {"layer", g.layer},
          {"thickness_mm", 1e3 * g.thickness},

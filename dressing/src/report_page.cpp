@@ -119,17 +119,19 @@ void add_tables(const DressResult& r, ReportPage& page) {
 
   rows.clear();
   for (const DressedGarment& g : r.garments) {
-    if (!g.placed_by_placement) continue;
-    for (const PartPlacement& p : g.placement.parts)
-      rows.push_back({g.name, p.garment_part, p.body_part, std::to_string(p.vertices),
-                      p.used_icp ? "yes" : "no", report_number(p.icp.fitness),
-                      report_number(1e3 * p.icp.rmse), p.note});
+    if (!g.wearer) continue;
+    const alignment::WearerFit& w = *g.wearer;
+    rows.push_back({g.name, report_number(w.scale), report_number(alignment::largest_turn_degrees(w)),
+                    report_number(1e3 * alignment::rms_from_ease(w)), report_number(1e3 * g.carry_move),
+                    g.placed_by_placement ? "carried onto the body" : "left as given: already on the body"});
   }
   if (!rows.empty()) {
     page.sections.push_back(ReportSection::table_of(
-        "Placement",
-        {"garment", "part", "on body part", "vertices", "ICP", "fitness", "rmse mm", "note"},
-        rows));
+        "Wearers",
+        {"garment", "wearer's size", "largest limb turn °", "RMS from an even ease mm", "carry moves (p95) mm", "placement"},
+        rows,
+        "The body fitted into each garment mesh where the garment's own wearer stood: its size against "
+        "the body's, how far its limbs turned, and how far carrying the garment from there moves it."));
   }
 
   rows.clear();

@@ -44,7 +44,8 @@ StageReport run_up_to(Outfit& outfit, const DressOptions& options, const std::st
   using Run = StageReport (*)(Outfit&, const DressOptions&);
   const std::vector<std::pair<std::string, Run>> order{
       {"load", stages::load},           {"clean", stages::clean},         {"units", stages::units},
-      {"segmentation", stages::segmentation}, {"layers", stages::layers}, {"placement", stages::placement},
+      {"segmentation", stages::segmentation}, {"wearer", stages::wearer}, {"layers", stages::layers},
+      {"placement", stages::placement},
       {"thickness", stages::thickness}, {"grading", stages::grading},     {"settle", stages::settle},
       {"padding", stages::padding}};
   for (const auto& [name, run] : order) {

@@ -38,7 +38,7 @@ TEST(DressCli, WritesTheDressedOutfitAndAReportOfEveryStage) {
     EXPECT_FALSE(s["reason"].get<std::string>().empty()) << s["name"];
     EXPECT_GE(s["seconds"].get<double>(), 0.0);
   }
-  EXPECT_EQ(names, (std::vector<std::string>{"load", "clean", "units", "segmentation", "layers", "placement",
+  EXPECT_EQ(names, (std::vector<std::string>{"load", "clean", "units", "segmentation", "wearer", "layers", "placement",
                                              "thickness", "grading", "settle", "padding", "write"}));
   const auto& g = report["garments"][0];
   EXPECT_EQ(g["vertices_inside_body_2mm"]["dressed"], 0);
@@ -91,13 +91,13 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
                    dir.file("c"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--padding: 'thick'"), std::string::npos) << r.err;
-  // MakeHuman's male casualsuit fitted onto GarmentCode's body: its placement stretches springs by
-  // up to ~280 %, beyond the simulator's blow-up strain: refused, not settled.
-  r = run(dir, "dress " + data("bodies/gc_mean_all.obj") + " " + data("garments/mh_male_casualsuit02.obj") +
-                   " --garment-units dm -o " + dir.file("d"));
+  // A body given as the garment: closed, no opening for a body to pass through.
+  r = run(dir, "dress " + data(kChild) + " " + data("bodies/mh_man_young_average.obj") + " --units dm -o " + dir.file("d"));
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(error_lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("mh_male_casualsuit02.obj: the placement stretches it by up to"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("mh_man_young_average.obj: its largest piece (26756 faces) is closed, with no opening"),
+            std::string::npos)
+      << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("d")));
   // A bad unit is named with the option that gave it.
   r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --garment-units furlongs -o " +

@@ -167,8 +167,9 @@ def check_ok_row(out, line, row_id):
           "row %s: crossings_dressed %s" % (row_id, line["crossings_dressed"]))
     check(abs(float(line["max_strain"]) - garment["max_strain"]) < 1e-3,
           "row %s: max_strain %s, report %s" % (row_id, line["max_strain"], garment["max_strain"]))
-    check(line["placement_rmse_mm_max"] != "" and float(line["placement_rmse_mm_max"]) > 0,
-          "row %s: no placement distance" % row_id)
+    wearer = garment["wearer"]
+    check(line["wearer_rms_mm_max"] != "" and abs(float(line["wearer_rms_mm_max"]) - wearer["rms_mm"]) < 0.01,
+          "row %s: wearer_rms_mm_max %r, report %s" % (row_id, line["wearer_rms_mm_max"], wearer["rms_mm"]))
     check(line["job_seconds"] != "" and float(line["job_seconds"]) >= float(line["seconds"]) - 0.5,
           "row %s: job_seconds %r" % (row_id, line["job_seconds"]))
 

@@ -20,7 +20,7 @@ COLUMNS = (
        "vertices_inside_placed", "vertices_inside_dressed", "max_strain",
        "crossings_authored", "crossings_fitted", "crossings_placed", "crossings_dressed",
        "crossings_between_layers", "layer_gap_p5_mm_min", "layer_gap_median_mm_min",
-       "placement_rmse_mm_max", "placement_fitness_min", "body_height_m", "folder"]
+       "wearer_rms_mm_max", "carry_move_mm_max", "body_height_m", "folder"]
 )
 EXIT_LINE = re.compile(r"^workflow: dress-a-mesh exited with code (-?\d+)")
 
@@ -97,11 +97,11 @@ def summarize(out, row, report):
         line["crossings_" + when] = sum(int(c.get(when) or 0) for c in crossings)
     strains = [g["max_strain"] for g in garments if g.get("max_strain") is not None]
     line["max_strain"] = _num(max(strains), 4) if strains else ""
-    parts = [p for g in garments for p in ((g.get("placement") or {}).get("parts") or [])]
-    rmse = [p["rmse_m"] for p in parts if p.get("rmse_m") is not None]
-    fitness = [p["fitness"] for p in parts if p.get("fitness") is not None]
-    line["placement_rmse_mm_max"] = _num(max(rmse) * 1000, 2) if rmse else ""
-    line["placement_fitness_min"] = _num(min(fitness), 3) if fitness else ""
+    wearers = [g["wearer"] for g in garments if g.get("wearer")]
+    rms = [w["rms_mm"] for w in wearers if w.get("rms_mm") is not None]
+    moves = [w["carry_move_p95_mm"] for w in wearers if w.get("carry_move_p95_mm") is not None]
+    line["wearer_rms_mm_max"] = _num(max(rms), 2) if rms else ""
+    line["carry_move_mm_max"] = _num(max(moves), 1) if moves else ""
     layers = report.get("layers") or {}
     line["crossings_between_layers"] = layers.get("crossings_between", "")
     gaps = layers.get("gaps") or []

@@ -88,12 +88,15 @@ StageReport layers(Outfit& outfit, const DressOptions& options) {
   if (options.infer_layers && garments.size() > 1) {
     std::vector<DressedGarment> ordered;
     std::vector<cloth::Fabric> fabrics;
+    std::vector<std::optional<alignment::CarriedGarment>> carried;
     for (std::size_t k : inferred_order(outfit, options)) {
       ordered.push_back(std::move(garments[k]));
       fabrics.push_back(outfit.fabrics[k]);
+      carried.push_back(std::move(outfit.carried[k]));
     }
     garments = std::move(ordered);
     outfit.fabrics = std::move(fabrics);
+    outfit.carried = std::move(carried);
   }
   for (std::size_t k = 0; k < garments.size(); ++k) garments[k].layer = static_cast<int>(k);
   if (garments.size() < 2) return left_out("one garment: no layers to order");

@@ -1,8 +1,8 @@
 // Settle: the placed garments, stacked as layers, settle on the body in the cloth simulator with
 // the body as a collider, trousers and skirts held by their waistbands. What is tried when a settle
-// jams or leaves a garment crossing itself is a policy written as data (kRetries below): each
-// retry says when it is tried and what it changes; a retry is kept when it settles and leaves fewer
-// crossings of the garments' own than the run kept so far.
+// fails, jams or leaves a garment crossing itself is a policy written as data (kRetries below): each
+// retry says when it is tried and what it changes; a retry after a failure is kept when it settles,
+// any other when it settles and leaves fewer crossings of the garments' own than the run kept.
 #include <algorithm>
 #include <numeric>
 #include <optional>
@@ -144,12 +144,26 @@ class Settler {
 };
 
 /// A settle tried again after the one kept so far. `prepare` says whether it applies to `kept`
-/// and, where it does, changes the setup (a copy of kept's) and returns what it changed.
+/// and, where it does, changes the setup (a copy of kept's) and returns what it changed. A retry
+/// after a failed settle is kept when it settles; any other when it settles with fewer crossings of
+/// the garments' own.
 struct SettleRetry {
   std::optional<std::string> (*prepare)(const Outfit& outfit, const SettleRun& kept, SettleSetup& setup,
                                         double allowed);
-  bool through_jams;  ///< settles through jams as the first settle does
+  bool through_jams;   ///< settles through jams as the first settle does
+  bool after_failure;  ///< tried only when the settle kept so far failed (otherwise only when it did not)
 };
+
+/// A settle that blew up starts again from the placed garments with steps a quarter as long, half
+/// the contact travel a step and four times the length limit's sweeps: what the first steps did to
+/// cloth pressed against the body is then taken back before it tears a spring.
+std::optional<std::string> safer(const Outfit&, const SettleRun& kept, SettleSetup& setup, double) {
+  setup.simulation.dt /= 4.0;
+  setup.simulation.contact_travel *= 0.5;
+  setup.simulation.strain_limit_iterations *= 4;
+  return "from the start with safer settings after it failed (" + kept.run.failure + "): steps of at most " +
+         number(setup.simulation.dt, 3) + " s, half the contact travel, four times the length limit's sweeps";
+}
 
 /// With a garment sewn from a pattern the adaptive step leaves the springs held at their length
 /// limit out of the rise it judges. The longer steps that allows can let cloth pressed between
@@ -190,8 +204,9 @@ std::optional<std::string> hold_authored_crossings(const Outfit& outfit, const S
 
 /// The retries, in the order tried after the first settle.
 const SettleRetry kRetries[] = {
-    {judge_held_springs, true},
-    {hold_authored_crossings, false},
+    {safer, true, true},
+    {judge_held_springs, true, false},
+    {hold_authored_crossings, false, false},
 };
 
 }  // namespace
@@ -231,14 +246,14 @@ StageReport settle(Outfit& outfit, const DressOptions& options) {
   SettleRun kept = settler.run_through_jams(setup);
   report += kept.said;
   for (const SettleRetry& retry : kRetries) {
-    if (!kept.run.ok) break;
+    if (retry.after_failure == kept.run.ok) continue;
     SettleSetup changed = kept.setup;
     const std::optional<std::string> how = retry.prepare(outfit, kept, changed, allowed);
     if (!how) continue;
     SettleRun again = retry.through_jams ? settler.run_through_jams(changed) : settler.run(changed);
     const int before = kept.own_total(), after = again.own_total();
     report += "; settled again " + *how;
-    if (again.run.ok && after < before) {
+    if (again.run.ok && (retry.after_failure || after < before)) {
       report += " (" + std::to_string(before) + " → " + counted(after, "crossing", "crossings") + ")" + again.said;
       kept = std::move(again);
     } else {

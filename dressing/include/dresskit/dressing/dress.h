@@ -1,7 +1,8 @@
 #pragma once
 // The dressing pipeline, the product's main job: a body and garments from files to the garments
 // settled on the body (docs/dressing.md). Stages, each reported as run or left out, with why and
-// how long: load → clean → units → segmentation → layers → placement → thickness → grading → settle → padding.
+// how long: load → clean → units → segmentation → wearer → layers → placement → thickness → grading → settle →
+// padding.
 //
 //   const dresskit::dressing::MeshFile body = dresskit::dressing::MeshFile::file("body.obj");
 //   const dresskit::dressing::GarmentFile shirt{dresskit::dressing::MeshFile::file("shirt.obj"), "gray-interlock"};
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "dresskit/alignment/placement.h"
+#include "dresskit/alignment/wearer.h"
 #include "dresskit/cloth/run.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/segmentation/segment.h"
@@ -76,13 +78,31 @@ struct DressOptions {
   /// inferred from their kinds (bottoms under tops; of one kind, the one lying farther from the body
   /// where both already lie on it, else the larger surface outside).
   bool infer_layers = false;
-  alignment::PlacementOptions placement;
+  /// How a garment mesh is placed: the body rigged and fitted into it where its wearer stood, the
+  /// garment carried from there onto the body (alignment/wearer.h), then pushed out of the body by
+  /// placement.clearance with its edges' stretch limited (alignment::push_out_of_body).
+  alignment::RigOptions rig;
+  alignment::WearerFitOptions wearer;
+  alignment::CarryOptions carry;
+  /// A garment mesh counts as already on the body, and is left where it is, when carrying it from
+  /// its wearer would move 95 % of the vertices of each of its parts (body, each sleeve, each leg)
+  /// by at most this fraction of the body's height: its sleeves lie around the arms as posed.
+  double fit_move = 0.01;
+  /// ... or when it lies around the body as it is nearly as evenly as around its wearer: the fit's
+  /// cost with the body unmoved at most this many times the wearer's (a skirt says little of the
+  /// legs inside it, which the fit may turn a little) [unitless].
+  double fit_cost = 1.5;
+  alignment::PlacementOptions placement = [] {
+    alignment::PlacementOptions o;
+    o.push_rings = 4;
+    return o;
+  }();
   segmentation::SegmentationOptions segmentation;
-  /// A garment counts as already on the body, and is not placed, when at most this fraction of its
-  /// vertices lies deeper than 2 mm inside the body and its vertices lie within on average
-  /// `fit_distance` × the body's height of the body's surface [unitless]. (A garment made for a
-  /// body often dips a few millimetres into it here and there: MakeHuman's casualsuit on its own
-  /// body has 5 % of its vertices so; settling pushes them out.)
+  /// A sewn pattern's garment counts as on the body, and a garment as lying on it when layers are
+  /// inferred, when at most this fraction of its vertices lies deeper than 2 mm inside the body
+  /// and its vertices lie within on average `fit_distance` × the body's height of the body's
+  /// surface [unitless]. (A garment made for a body often dips a few millimetres into it here and
+  /// there; settling pushes them out.)
   double fit_inside = 0.1, fit_distance = 0.03;
   /// Trousers and skirts (pieces with leg or skirt parts and no sleeves) are held while settling by
   /// their vertices within this distance of the piece's top, as by a belt [m]; 0: not held.
@@ -99,7 +119,7 @@ struct DressOptions {
 };
 
 struct DressStage {
-  std::string name;      ///< load, clean, units, segmentation, layers, placement, thickness, grading, settle, padding
+  std::string name;      ///< load, clean, units, segmentation, wearer, layers, placement, thickness, grading, settle, padding
   bool ran = false;
   double seconds = 0.0;  ///< wall-clock
   std::string reason;    ///< what it did, or why it was left out
@@ -190,6 +210,11 @@ struct DressedGarment {
   bool labels_from_file = false;      ///< from a label file or given with the mesh
   bool placed_by_placement = false;   ///< false: it already sat on the body
   alignment::PlacementResult placement;          ///< when placed_by_placement
+  /// A garment mesh's wearer: the body fitted into the garment where its own wearer stood (none for
+  /// a sewn pattern), and how far carrying the garment from there onto the body moves it: the 95th
+  /// percentile of each part's vertex moves, the largest over its parts [m].
+  std::optional<alignment::WearerFit> wearer;
+  double carry_move = 0.0;
   Eigen::MatrixX3d placed, dressed;   ///< [m], in mesh's vertex order
   int layer = 0;                      ///< 0 = worn next to the body
   double thickness = 0.0;             ///< the cloth's own thickness from its fabric [m]
