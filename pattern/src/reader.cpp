@@ -253,7 +253,7 @@ Pattern parse_pattern(const std::string& text, const std::string& file,
   json root;
   try {
     root = json::parse(text);
-  } catch (const json::parse_error& e) {
+  } catch (const json::exception& e) {  // a syntax error, or a number beyond a double (1e999)
     throw InputError(file + ": not valid JSON: " + e.what());
   }
   if (!root.is_object() || !root.contains("pattern") || !root.at("pattern").is_object())

@@ -108,6 +108,8 @@ void AlignCommand::add_to(CLI::App& app) {
 }
 
 int AlignCommand::run() {
+  const OutputLock lock = check_output_folder(dir, {source, target, garment_labels, body_labels, reference},
+                                              {"aligned.obj", "posed.obj", "result.json", "report.html"});
   const std::string su = !source_units.empty() ? source_units : (!units.empty() ? units : "m");
   const std::string tu = !target_units.empty() ? target_units : (!units.empty() ? units : "m");
   const TriangleMesh src = load(source, su, up), dst = load(target, tu, up);

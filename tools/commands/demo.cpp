@@ -35,6 +35,7 @@ int DemoCommand::run() {
   body.pose = parse_pose(pose);
   garments.edge_length = body.edge_length;
   const BodyShape shape(body);  // checks the options before anything is made
+  const OutputLock lock = check_output_folder(dir, {});
   check_options(garments);
   GarmentOptions over = garments;
   over.ease += over_ease;

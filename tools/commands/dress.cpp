@@ -183,7 +183,11 @@ int DressCommand::run() {
   inputs.push_back(pattern_body);
   inputs.push_back(pattern_body_labels);
   inputs.insert(inputs.end(), garment_labels.begin(), garment_labels.end());
-  check_output_folder(dir, inputs);
+  // The files the run writes into dir, none of which may be an input.
+  std::vector<std::string> outputs = {"report.json", "report.html", "dressed.glb", "segments.ply"};
+  for (const std::string& s : stems)
+    for (const char* kind : {".placed.obj", ".dressed.obj", ".outer.obj"}) outputs.push_back(s + kind);
+  const OutputLock lock = check_output_folder(dir, inputs, outputs);
   DressOptions options;
   options.quality = parse_quality(quality);
   options.settle = !no_settle;

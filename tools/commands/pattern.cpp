@@ -35,7 +35,7 @@ void PatternCommand::add_to(CLI::App& app) {
 int PatternCommand::run() {
   if (!(edge > 0.0 && edge < 1e3))  // NaN too
     throw InputError("--edge: " + std::to_string(edge) + " is not a positive length below 1000 m");
-  check_output_folder(output, {path});  // the output folder is the pattern, or cannot be: before any work
+  const OutputLock lock = check_output_folder(output, {path});  // the output folder is the pattern, or cannot be: before any work
   pattern::ReadOptions read;
   read.max_length_ratio = length_ratio;
   const pattern::Pattern p = pattern::read_pattern(path, read);

@@ -253,6 +253,7 @@ int SegmentCommand::run() {
   if (!(options.limb_tip_fraction >= 0 && options.limb_tip_fraction < 1))
     throw InputError("--limb-tip: must be at least 0 and less than 1");
 
+  const OutputLock lock = check_output_folder(output, {path}, {"labels.json", "report.html", "segments.ply"});
   const TriangleMesh mesh = load_mesh(path, load);
   SegmentationResult r;
   try {

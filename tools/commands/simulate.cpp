@@ -59,6 +59,7 @@ int SimulateCommand::run() {
   }
   // Everything is written into a fresh folder that replaces the outputs of an earlier run into dir
   // as a whole, so frames of two runs are never mixed.
+  const OutputLock lock = check_output_folder(dir, inputs);
   int code = 0;
   write_folder(dir, [&](const fs::path& out) { code = simulate_into(s, out); }, inputs);
   return code;
