@@ -72,7 +72,7 @@ void check_body_units(const TriangleMesh& body, const MeshFile& body_file, const
     const bool same_units = along.empty() || Units::parse(along).metres_per_unit == body_file.load.units.metres_per_unit;
     const double metres = extent[longest] * (along.empty() ? body_file.load.units.metres_per_unit
                                                            : Units::parse(along).metres_per_unit);
-    throw InputError(said + "; it is longest along the file's " + name + " axis: with --up " + name + " (or -" + name +
+    throw InputError(said + "; it is longest along the file's " + name + " axis: with --body-up " + name + " (or -" + name +
                      ")" + (same_units ? "" : " and --body-units " + along) + " it would be " + number(metres) +
                      " m tall");
   }

@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <map>
 #include <unordered_map>
 
@@ -79,7 +80,7 @@ Eigen::MatrixX3d to_file_frame(const Eigen::MatrixX3d& V, const LoadOptions& opt
 namespace {
 
 // The `v` lines of an OBJ file, in order and in double precision. Throws on a malformed or
-// non-finite coordinate, naming the line.
+// non-finite coordinate, or a face line of fewer than three corners, naming the line.
 Eigen::MatrixX3d read_obj_vertex_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   std::vector<double> xyz;
@@ -87,6 +88,17 @@ Eigen::MatrixX3d read_obj_vertex_lines(const std::string& path) {
   long line_number = 0;
   while (std::getline(in, line)) {
     ++line_number;
+    if (line.size() >= 2 && line[0] == 'f' && (line[1] == ' ' || line[1] == '\t')) {
+      // A face of fewer than three corners (a file cut short in a face line) is named by its line,
+      // rather than by assimp's structure check, which names no line.
+      std::istringstream corners(line.substr(2));
+      int count = 0;
+      for (std::string corner; corners >> corner && corner[0] != '#';) ++count;
+      if (count < 3)
+        throw InputError(path + ":" + std::to_string(line_number) + ": face line with " + std::to_string(count) +
+                         (count == 1 ? " corner" : " corners") + " (a face needs three; is the file cut short?)");
+      continue;
+    }
     if (line.size() < 2 || line[0] != 'v' || (line[1] != ' ' && line[1] != '\t')) continue;
     const char* p = line.c_str() + 2;
     for (int k = 0; k < 3; ++k) {

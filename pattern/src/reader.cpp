@@ -49,6 +49,11 @@ Eigen::Vector3d triple(const Context& c, const json& panel, const char* key,
           number(c, v[2], where + " " + key)};
 }
 
+/// A curve's control point lies at most this many chord lengths from its chord's midpoint.
+constexpr double kFarthestControl = 10.0;
+/// A panel's translation is at most this many times the pattern's largest panel from the origin.
+constexpr double kFarthestPanel = 100.0;
+
 /// The curvature of an edge: relative coordinates are (along the chord, along the chord turned a
 /// quarter counter-clockwise) as fractions of the chord; absolute ones are panel coordinates.
 void read_curvature(const Context& c, const json& curvature, bool relative, double scale,
@@ -56,9 +61,15 @@ void read_curvature(const Context& c, const json& curvature, bool relative, doub
                     const std::string& where) {
   auto control = [&](const json& v) -> Eigen::Vector2d {
     const Eigen::Vector2d q = pair(c, v, where + " curvature");
-    if (!relative) return q / scale;
     const Eigen::Vector2d chord = p1 - p0;
-    return p0 + q.x() * chord + q.y() * Eigen::Vector2d(-chord.y(), chord.x());
+    const Eigen::Vector2d at = relative ? Eigen::Vector2d(p0 + q.x() * chord + q.y() * Eigen::Vector2d(-chord.y(), chord.x()))
+                                        : Eigen::Vector2d(q / scale);
+    // A curve bulging out many times its chord is no garment's edge (and would be sampled into
+    // thousands of points): refused before any work.
+    if ((at - 0.5 * (p0 + p1)).norm() > kFarthestControl * std::max(chord.norm(), 1e-12))
+      c.fail(where, "curvature control point " + v.dump() + " lies more than " + std::to_string(int(kFarthestControl)) +
+                        " chord lengths from its edge");
+    return at;
   };
   if (curvature.is_array()) {  // older files: one relative quadratic control point
     e.kind = CurveKind::quadratic;
@@ -103,6 +114,9 @@ Panel read_panel(const Context& c, const std::string& name, const json& j, bool 
     p.vertices.row(i) = pair(c, vs[i], where + " vertex " + std::to_string(i)).transpose() / scale;
   p.translation = triple(c, j, "translation", where) / scale;
   p.euler_degrees = triple(c, j, "rotation", where);
+  if (p.euler_degrees.cwiseAbs().maxCoeff() > 360.0)
+    c.fail(where + " rotation", "an angle beyond a whole turn (" + std::to_string(p.euler_degrees.cwiseAbs().maxCoeff()) +
+                                    "°): rotations are degrees within ±360");
   if (!j.contains("edges") || !j.at("edges").is_array() || j.at("edges").empty())
     c.fail(where, "needs \"edges\"");
   const json& es = j.at("edges");
@@ -295,6 +309,16 @@ Pattern parse_pattern(const std::string& text, const std::string& file,
         read_panel(c, name, panels.at(name), relative, pattern.units_in_meter));
     check_panel(c, pattern.panels.back(), options);
   }
+  // Panels are placed around one body: one thousands of panel sizes away is a typing error, and
+  // sewing it to the others would run for ever.
+  double largest = 0.0;
+  for (const Panel& panel : pattern.panels)
+    largest = std::max(largest, (panel.vertices.colwise().maxCoeff() - panel.vertices.colwise().minCoeff()).norm());
+  for (const Panel& panel : pattern.panels)
+    if (panel.translation.norm() > kFarthestPanel * largest)
+      c.fail("panel " + quoted(panel.name) + " translation",
+             "lies " + std::to_string(panel.translation.norm()) + " m from the origin, more than " +
+                 std::to_string(int(kFarthestPanel)) + " times the largest panel's size (" + std::to_string(largest) + " m)");
   if (pj.contains("stitches")) {
     const json& ss = pj.at("stitches");
     if (!ss.is_array()) c.fail("pattern.stitches", "must be an array");

@@ -118,7 +118,7 @@ TEST(AlignCli, PlacementReadsSegmentsLabels) {
   EXPECT_EQ(load_mesh(dir.file("out/posed.obj")).num_vertices(), 2197);
 }
 
-// An output that would replace an input is refused before anything is written: the source named
+// An output that would replace an input is refused before any work: the source named
 // aligned.obj in the output folder stays as it was, and no result.json appears beside it.
 TEST(AlignCli, RefusesToOverwriteItsInput) {
   test::TempDir dir;
@@ -130,7 +130,7 @@ TEST(AlignCli, RefusesToOverwriteItsInput) {
                                 dir.path().string());
   EXPECT_EQ(r.code, 2) << r.err;
   EXPECT_EQ(lines(r.err), 1) << r.err;
-  EXPECT_NE(r.err.find("refusing to overwrite the input"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("aligned.obj: an input named as an output the run writes into"), std::string::npos) << r.err;
   EXPECT_EQ(slurp(dir.file("aligned.obj")), before);
   EXPECT_FALSE(std::filesystem::exists(dir.file("result.json")));
 }

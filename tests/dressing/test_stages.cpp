@@ -74,6 +74,27 @@ TEST(Stages, LoadTakesMeshesGivenInMemoryAndRefusesTwoOfOneName) {
             std::string::npos);
 }
 
+// A body or garment beyond the triangles the stages handle in seconds is refused when loaded,
+// naming the file and the bound.
+TEST(Stages, LoadRefusesMeshesLargerThanTheBound) {
+  const SmallOutfit s;
+  DressOptions o;
+  o.max_garment_triangles = s.shirt.num_faces() - 1;
+  Outfit outfit(s.body_file, s.garments);
+  const std::string e = test::input_error_of([&] { stages::load(outfit, o); });
+  EXPECT_NE(e.find("shirt: " + std::to_string(s.shirt.num_faces()) + " triangles, more than the " +
+                   std::to_string(o.max_garment_triangles) + " a garment may have"),
+            std::string::npos)
+      << e;
+  o.max_garment_triangles = 0;  // no bound
+  o.max_body_triangles = s.body.num_faces() / 2;
+  Outfit again(s.body_file, s.garments);
+  EXPECT_NE(test::input_error_of([&] { stages::load(again, o); }).find("body: "), std::string::npos);
+  o.max_body_triangles = s.body.num_faces();
+  Outfit fits(s.body_file, s.garments);
+  EXPECT_NO_THROW(stages::load(fits, o));
+}
+
 TEST(Stages, CleanRepairsOnlyAMeshWithDefects) {
   SmallOutfit s;
   {

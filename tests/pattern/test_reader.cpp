@@ -160,6 +160,29 @@ TEST(PatternReader, CurvedEdgeCrossingItsPanelNamed) {
   EXPECT_NE(e.find("crosses itself: edge 1 meets edge 3"), std::string::npos) << e;
 }
 
+// Numbers JSON allows but no garment has, each refused when read, naming where: a number beyond a
+// double, a control point a million chords away, a panel a billion metres away, an angle of 1e300°.
+TEST(PatternReader, AbsurdNumbersAreRefusedWhenRead) {
+  std::string overflow = test::two_panel_pattern();
+  overflow.replace(overflow.find("[-20, 80, 15]"), 13, "[-20, 1e999, 15]");
+  const std::string e1 = error_of(overflow);
+  EXPECT_NE(e1.find("bad.json: not valid JSON"), std::string::npos) << e1;
+  const std::string e2 = error_of(test::two_panel_pattern(
+      R"({"endpoints": [1, 2], "curvature": {"type": "quadratic", "params": [[0.5, 1e6]]}})"));
+  EXPECT_NE(e2.find("panel 'front' edge 1"), std::string::npos) << e2;
+  EXPECT_NE(e2.find("more than 10 chord lengths"), std::string::npos) << e2;
+  std::string far = test::two_panel_pattern();
+  far.replace(far.find("[-20, 80, 15]"), 13, "[1e14, 80, 15]");  // cm: 1e12 m
+  const std::string e3 = error_of(far);
+  EXPECT_NE(e3.find("panel 'front' translation"), std::string::npos) << e3;
+  std::string turned = test::two_panel_pattern();
+  turned.replace(turned.find("[0, 180, 0]"), 11, "[0, 1e300, 0]");
+  const std::string e4 = error_of(turned);
+  EXPECT_NE(e4.find("panel 'back' rotation"), std::string::npos) << e4;
+  EXPECT_NE(e4.find("beyond a whole turn"), std::string::npos) << e4;
+  for (const std::string& e : {e1, e2, e3, e4}) EXPECT_EQ(e.find('\n'), std::string::npos) << "one line: " << e;
+}
+
 TEST(PatternReader, UnequalStitchedEdgesWarnNamingBoth) {
   // Front edge 1 bulging by a cubic: 10 % longer than the straight back edge 3 it is sewn to.
   const Pattern p = parse_pattern(

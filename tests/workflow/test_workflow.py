@@ -225,6 +225,8 @@ def test_bad_input(runner, data):
         data_row(data, "d", body_units="m"),                 # line 5: dress fails (a 12.7 m body)
         "e,%s,%s" % (body, os.path.join(data, GARMENT)),     # line 6: missing cells
         data_row(data, "x/y"),                               # line 7: not a folder name
+        data_row(data, "a" * 250),                           # line 8: an id too long for a folder
+        "n,%s\0,%s,dm,dm" % (body, os.path.join(data, GARMENT)),  # line 9: a NUL byte
     ])
     code, output = runner.run(manifest, out)
     check(code != 0, "a manifest with failing rows: exit code 0\n%s" % output[-3000:])
@@ -235,6 +237,8 @@ def test_bad_input(runner, data):
         "5": ("d", "failed", "12.7 m tall"),
         "6": ("e", "failed", "no value for body_units, garment_units"),
         "7": ("x/y", "failed", "not usable as a folder name"),
+        "8": ("a" * 250, "failed", "id is 250 characters long"),
+        "9": ("n", "failed", "body holds a NUL byte"),
     }
     lines = {l["line"]: l for l in summary(out)}
     check(sorted(lines) == sorted(expected), "summary lines %s" % sorted(lines))
@@ -272,6 +276,15 @@ def test_bad_input(runner, data):
         check("line %s (id %s): failed: " % (number, l["id"]) in output, "output does not name line %s" % number)
     check(jobs_run(output) == [], "rows were dressed: %s" % jobs_run(output))
     print("  a header without garment_units: both rows named and marked failed, none run")
+
+    # A manifest that is not UTF-8: refused in one line naming the byte, not a traceback.
+    latin = os.path.join(tmp, "latin1.csv")
+    with open(latin, "wb") as f:
+        f.write(b"id,body,garments,body_units,garment_units\nz\xe9,b.obj,g.obj,dm,dm\n")
+    code, output = runner.run(latin, os.path.join(tmp, "out-latin1"))
+    check(code != 0 and "not UTF-8 text (byte 43: 0xe9)" in output and "Traceback" not in output,
+          "a Latin-1 manifest: exit code %d\n%s" % (code, output[-2000:]))
+    print("  a manifest that is not UTF-8: refused naming the byte")
 
     code, output = runner.run(os.path.join(tmp, "absent.csv"), os.path.join(tmp, "out-absent"))
     check(code != 0 and "manifest not found" in output, "a missing manifest: exit code %d\n%s" % (code, output[-2000:]))

@@ -34,6 +34,8 @@ void DressCommand::add_to(CLI::App& app) {
   command->add_option("--body-units", body_units, "length unit of BODY (overrides --units)");
   command->add_option("--garment-units", garment_units, "length unit of the garments (overrides --units)");
   option_with_default(command, "--up", up, "up axis of every input: +x, -x, +y, -y, +z, -z");
+  command->add_option("--body-up", body_up, "up axis of BODY (overrides --up)");
+  command->add_option("--garment-up", garment_up, "up axis of the garments (overrides --up)");
   // One value per --fabric, --padding or --garment-labels, each repeated per garment: a list after one
   // would take the body and garments given after it.
   command->add_option("--fabric", fabrics,
@@ -69,7 +71,7 @@ namespace {
 /// The units of one kind of input: its own option (named `option`) where given, else --units, else
 /// metres. A bad value is named with the option that gave it.
 LoadOptions load_options(const char* option, const std::string& specific, const std::string& common,
-                         const std::string& up) {
+                         const char* up_option, const std::string& up_specific, const std::string& up) {
   LoadOptions o;
   const std::string value = !specific.empty() ? specific : !common.empty() ? common : "m";
   try {
@@ -79,10 +81,10 @@ LoadOptions load_options(const char* option, const std::string& specific, const 
     throw InputError(std::string(!specific.empty() ? option : "--units") + what.substr(what.find(':')));
   }
   try {
-    o.up = parse_up_axis(up);
+    o.up = parse_up_axis(!up_specific.empty() ? up_specific : up);
   } catch (const InputError& e) {  // "up axis: '…' is not …", named by the option
     const std::string what = e.what();
-    throw InputError("--up" + what.substr(what.find(':')));
+    throw InputError(std::string(!up_specific.empty() ? up_option : "--up") + what.substr(what.find(':')));
   }
   return o;
 }
@@ -145,12 +147,12 @@ std::string write_failure_page(const std::string& dir, const DressResult& r, con
 }
 
 int DressCommand::run() {
-  const MeshFile body_file = MeshFile::file(body, load_options("--body-units", body_units, units, up), body_labels);
+  const MeshFile body_file = MeshFile::file(body, load_options("--body-units", body_units, units, "--body-up", body_up, up), body_labels);
   std::vector<GarmentFile> garment_files;
   std::set<std::string> stems;
   for (std::size_t i = 0; i < garments.size(); ++i) {
     GarmentFile g;
-    g.file = MeshFile::file(garments[i], load_options("--garment-units", garment_units, units, up),
+    g.file = MeshFile::file(garments[i], load_options("--garment-units", garment_units, units, "--garment-up", garment_up, up),
                             per_garment(garment_labels, i, "--garment-labels", garments.size()));
     g.fabric = per_garment(fabrics, i, "--fabric", garments.size());
     const std::string padding = per_garment(paddings, i, "--padding", garments.size());
@@ -158,7 +160,7 @@ int DressCommand::run() {
       throw InputError("--padding: '" + padding + "' is not none or heat");
     g.padded = padding == "heat";
     if (!pattern_body.empty())
-      g.pattern_body = MeshFile::file(pattern_body, load_options("--pattern-body-units", pattern_body_units, units, up), pattern_body_labels);
+      g.pattern_body = MeshFile::file(pattern_body, load_options("--pattern-body-units", pattern_body_units, units, "--up", "", up), pattern_body_labels);
     if (!stems.insert(fs::path(garments[i]).stem().string()).second)
       throw InputError(garments[i] + ": another garment has the same file name; outputs are named by it");
     garment_files.push_back(g);

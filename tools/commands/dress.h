@@ -12,7 +12,7 @@ namespace dresskit::cli {
 struct DressCommand : Command {
   std::string body;
   std::vector<std::string> garments, fabrics, paddings, garment_labels;
-  std::string dir, units, body_units, garment_units, up = "+y", body_labels, quality = "fast",
+  std::string dir, units, body_units, garment_units, up = "+y", body_up, garment_up, body_labels, quality = "fast",
               layers = "given", pattern_body, pattern_body_units, pattern_body_labels;
   bool no_settle = false, as_json = false, segments = false;
 

@@ -23,6 +23,13 @@ RESERVED_IDS = {"summary.csv", "summary.log", "contact_sheet.png"}
 ID_PATTERN = re.compile(r"[A-Za-z0-9_][A-Za-z0-9._-]*")
 
 
+# A row's id names its folder, beside the workflow's temporary names: well within a file name's 255.
+MAX_ID_LENGTH = 200
+# Snakemake takes a wildcard ending in text repeated 20 or more times for a cycle and stops the
+# whole workflow (its PeriodicityDetector): such an id is refused for its row alone.
+PERIODIC_END = re.compile(r"((?P<value>.+)(?P=value){19,99})$")
+
+
 class ManifestError(Exception):
     pass
 
@@ -93,6 +100,11 @@ def read(path, default_quality="fast"):
     if not os.path.isfile(path):
         raise ManifestError("manifest not found: %s" % path)
     folder = os.path.dirname(os.path.abspath(path))
+    try:
+        with open(path, "rb") as f:
+            f.read().decode("utf-8-sig")
+    except UnicodeDecodeError as e:
+        raise ManifestError("%s: not UTF-8 text (byte %d: 0x%02x)" % (path, e.start, e.object[e.start]))
     with open(path, newline="", encoding="utf-8-sig") as f:
         reader = csv.reader(f)
         try:
@@ -142,6 +154,9 @@ def read(path, default_quality="fast"):
 
 
 def _check_row(row, values, cells, header, folder, default_quality):
+    for name, cell in zip(header, cells):
+        if "\0" in cell:
+            return "%s holds a NUL byte" % (name or "a column")
     if len(cells) < len(header):
         absent = header[len(cells):]
         return "%d of %d columns: no value for %s" % (len(cells), len(header), ", ".join(absent))
@@ -151,6 +166,10 @@ def _check_row(row, values, cells, header, folder, default_quality):
         return "the id is empty"
     if not ID_PATTERN.fullmatch(row.id):
         return "id %r is not usable as a folder name (letters, digits, '.', '_', '-'; not starting with '.' or '-')" % row.id
+    if len(row.id) > MAX_ID_LENGTH:
+        return "id is %d characters long (at most %d: it names the row's folder)" % (len(row.id), MAX_ID_LENGTH)
+    if PERIODIC_END.search(row.id):
+        return "id %r ends in text repeated 20 or more times, which Snakemake refuses as a wildcard" % row.id
     if row.id in RESERVED_IDS:
         return "id %s is a name the workflow writes in the output folder" % row.id
     for column in REQUIRED[1:]:

@@ -58,11 +58,20 @@ PartBodies part_bodies(Outfit& outfit, const GarmentFile& g, const DressOptions&
   return {&it->second, &*outfit.labelled_body};
 }
 
+/// A mesh beyond the size the stages handle in seconds (segmentation, the settle) is refused at
+/// once, rather than left to run for minutes.
+void refuse_larger(const mesh::TriangleMesh& m, const MeshFile& file, const char* what, int most) {
+  if (most > 0 && m.num_faces() > most)
+    throw InputError(file.path + ": " + counted(m.num_faces(), "triangle", "triangles") + ", more than the " +
+                     std::to_string(most) + " a " + what + " may have: decimate it first");
+}
+
 }  // namespace
 
 StageReport load(Outfit& outfit, const DressOptions& options) {
   DressResult& result = outfit.result;
   result.body = load_file(outfit.body_file);
+  refuse_larger(result.body, outfit.body_file, "body", options.max_body_triangles);
   for (const GarmentFile& g : outfit.garment_files) {
     DressedGarment d;
     d.in_memory = g.file.mesh.has_value();
@@ -81,6 +90,7 @@ StageReport load(Outfit& outfit, const DressOptions& options) {
       sew_pattern_garment(g, result.body, outfit.body_file.load, outfit.body_distance(), options, parts, d);
     } else {
       d.mesh = load_file(g.file);
+      refuse_larger(d.mesh, g.file, "garment", options.max_garment_triangles);
     }
     result.garments.push_back(std::move(d));
   }

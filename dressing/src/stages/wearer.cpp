@@ -57,7 +57,14 @@ StageReport wearer(Outfit& outfit, const DressOptions& options) {
     DressedGarment& g = garments[k];
     if (g.from_pattern) continue;
     refuse_what_is_no_garment(g);
-    const alignment::WearerFit fit = alignment::fit_wearer(rig, outfit.result.body, g.mesh.V, options.wearer);
+    const alignment::WearerFit fit = [&] {
+      try {
+        return alignment::fit_wearer(rig, outfit.result.body, g.mesh.V, options.wearer);
+      } catch (const InputError& e) {  // "garment: too few points …", named by its file
+        const std::string what = e.what();
+        throw InputError(g.file.path + what.substr(what.find(':')));
+      }
+    }();
     // A wearer at the bounds of the sizes tried: the garment is not for a person of this size.
     const alignment::WearerFitOptions& o = options.wearer;
     if (fit.scale <= 1.001 * o.smallest_scale || fit.scale >= 0.999 * o.largest_scale)

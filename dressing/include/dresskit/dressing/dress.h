@@ -78,6 +78,9 @@ struct DressOptions {
   /// inferred from their kinds (bottoms under tops; of one kind, the one lying farther from the body
   /// where both already lie on it, else the larger surface outside).
   bool infer_layers = false;
+  /// The largest meshes dressed, in triangles (after quads are split): a larger body or garment is
+  /// refused when loaded (0: no bound). Segmentation and the settle take minutes beyond these.
+  int max_body_triangles = 400000, max_garment_triangles = 200000;
   /// How a garment mesh is placed: the body rigged and fitted into it where its wearer stood, the
   /// garment carried from there onto the body (alignment/wearer.h), then pushed out of the body by
   /// placement.clearance with its edges' stretch limited (alignment::push_out_of_body).
