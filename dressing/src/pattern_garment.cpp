@@ -268,6 +268,9 @@ void sew_pattern_garment(const GarmentFile& g, const TriangleMesh& body, const L
   s.sewn_pairs = sewn.closed_pairs;
   s.welded_open_pairs = sewn.welded_open;
   s.sew_method = sewn.method;
+  s.sew_stopped = sewn.stopped;
+  s.sew_steps = sewn.steps;
+  s.sew_contacts = sewn.contacts;
   s.max_gap = sewn.max_gap;
   s.closed = sewn.closed;
   s.unwelded = sewn.unwelded;

@@ -61,8 +61,9 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
   r.stitch_pairs = model.seams.size();
   // Sewing stops once the simulator holds every pair (each came within the tolerance), or at the
   // limits, which both stages share.
-  const auto start = std::chrono::steady_clock::now();
   double simulated = 0.0;
+  const double contact_budget =
+      options.max_contacts_per_step * static_cast<double>(options.max_steps) * static_cast<double>(nv);
   auto sew = [&](ClothSimulator& sim) {
     for (;;) {
       const StepResult step = sim.step();
@@ -71,6 +72,7 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
         return false;
       }
       ++r.steps;
+      r.contacts += step.self.proximity_pairs + step.self.ccd_collisions + step.self.zone_particles;
       if (options.on_step) options.on_step(simulated + sim.time(), options.max_seconds);
       if (std::all_of(sim.sewn().begin(), sim.sewn().end(), [](char c) { return c != 0; })) {
         r.stopped = "closed";
@@ -84,10 +86,8 @@ SewResult sew_once(const Pattern& pattern, const CutPattern& cut, const Triangle
         r.stopped = "step limit";
         return false;
       }
-      if (options.max_wall_seconds > 0.0 &&
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() >
-              options.max_wall_seconds) {
-        r.stopped = "wall-clock limit";
+      if (contact_budget > 0.0 && static_cast<double>(r.contacts) > contact_budget) {
+        r.stopped = "contact limit";
         return false;
       }
     }
@@ -313,6 +313,7 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
         sew_once(pattern, cut, panels, distance, options, options.fallback_acceleration, first);
     pulled.method = "seam forces";
     const int steps = r.steps + pulled.steps;
+    const long long contacts = r.contacts + pulled.contacts;
     // Kept where it closes, or comes closer without crossing itself more (seam forces can tangle
     // the panels where drawing left a seam open).
     const auto crossings = [](const SewResult& s) {
@@ -321,6 +322,7 @@ SewResult sew_pattern(const Pattern& pattern, const CutPattern& cut, const Trian
     if (pulled.closed || (pulled.max_gap < r.max_gap && crossings(pulled) <= crossings(r)))
       r = std::move(pulled);
     r.steps = steps;
+    r.contacts = contacts;
   }
   r.moved_by = moved.transpose();
   r.panels_moved_out = moved_out;

@@ -153,6 +153,9 @@ struct SewnPattern {
   int sewn_pairs = 0;      ///< of those, sewn and welded
   int welded_open_pairs = 0;  ///< pairs left open but welded (within the cut's edge length)
   std::string sew_method;  ///< "drawn" or "seam forces" (pattern::SewResult::method)
+  std::string sew_stopped;  ///< why sewing stopped: "closed", or the limit it reached
+  int sew_steps = 0;        ///< simulator steps of sewing, both tries
+  long long sew_contacts = 0;  ///< cloth–cloth contacts handled sewing (pattern::SewResult::contacts)
   /// Largest stitch pair distance when sewing stopped, before welding [m]: a pair sewn (held by the
   /// simulator) may be left slightly apart by the collision passes after it.
   double max_gap = 0.0;
