@@ -30,9 +30,6 @@ constexpr int kLimbDirections = 32;
 constexpr double kStartKept = 0.7;
 /// The share by which a limb's turn must lower the garment's cost to be taken (search_limbs).
 constexpr double kLimbGain = 0.02;
-/// The share of all points' weight by which a bone's turn prior is held even where few points lie
-/// over it (refine).
-constexpr double kTurnPriorFloor = 0.05;
 /// Garment points the limb search looks at, at most (every k-th).
 constexpr int kLimbSamples = 800;
 
@@ -66,6 +63,24 @@ std::vector<double> edge_distance(const Eigen::MatrixX3d& V, const std::vector<s
     }
   }
   return d;
+}
+
+/// `sweeps` times, each row of W (one per vertex) moves halfway to the mean of its neighbours' rows.
+void smooth_rows(Eigen::MatrixXd& W, const std::vector<std::vector<int>>& neighbours, int sweeps) {
+  Eigen::MatrixXd next(W.rows(), W.cols());
+  for (int s = 0; s < sweeps; ++s) {
+    for (Eigen::Index v = 0; v < W.rows(); ++v) {
+      const std::vector<int>& around = neighbours[static_cast<std::size_t>(v)];
+      if (around.empty()) {
+        next.row(v) = W.row(v);
+        continue;
+      }
+      Eigen::RowVectorXd mean = Eigen::RowVectorXd::Zero(W.cols());
+      for (int w : around) mean += W.row(w);
+      next.row(v) = 0.5 * W.row(v) + 0.5 * mean / static_cast<double>(around.size());
+    }
+    W.swap(next);
+  }
 }
 
 Eigen::Vector3d centroid(const Eigen::MatrixX3d& V, const std::vector<int>& rows) {
@@ -209,20 +224,9 @@ BodyRig rig_body(const TriangleMesh& body, const RigOptions& options) {
     for (int w : neighbours[v]) edge_sum += (body.V.row(v) - body.V.row(w)).norm(), ++edges;
   const double mean_edge = edges ? edge_sum / static_cast<double>(edges) : 1.0;
   const int sweeps = std::clamp(static_cast<int>(std::lround(std::pow(options.blend_width / mean_edge, 2.0))), 0, 400);
-  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n, bones), next(n, bones);
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(n, bones);
   for (int v = 0; v < n; ++v) W(v, bone[v]) = 1.0;
-  for (int s = 0; s < sweeps; ++s) {
-    for (int v = 0; v < n; ++v) {
-      if (neighbours[v].empty()) {
-        next.row(v) = W.row(v);
-        continue;
-      }
-      Eigen::RowVectorXd mean = Eigen::RowVectorXd::Zero(bones);
-      for (int w : neighbours[v]) mean += W.row(w);
-      next.row(v) = 0.5 * W.row(v) + 0.5 * mean / static_cast<double>(neighbours[v].size());
-    }
-    W.swap(next);
-  }
+  smooth_rows(W, neighbours, sweeps);
   rig.influence_bone.setConstant(n, BodyRig::kMaxInfluences, -1);
   rig.influence_weight.setZero(n, BodyRig::kMaxInfluences);
   rig.bone_of_vertex.resize(n);
@@ -389,16 +393,9 @@ class Fitter {
         H(6, 6) += ws;
         grad(6) += ws * s.theta(6);
       }
-      // A bone's turn is held by the points it carries (its own and its children's): a limb that
-      // few points cover turns as freely, against them, as one that many do.
-      std::vector<double> carried(static_cast<std::size_t>(bones), 0.0);
-      for (int i = 0; i < m; ++i)
-        for (int b = rig_.bone_of_vertex(nearest[i]); b > 0; b = rig_.parent[b]) carried[b] += w[i];
       for (int q = kGlobal; q < np; ++q) {
-        const int b = 1 + (q - kGlobal) / 3;
-        const double wb = wt * (carried[b] / weight_total + kTurnPriorFloor);
-        H(q, q) += wb;
-        grad(q) += wb * s.theta(q);
+        H(q, q) += wt;
+        grad(q) += wt * s.theta(q);
       }
       for (int q = 0; q < total; ++q) H(q, q) += 1e-6 * weight_total + 1e-3 * H(q, q);
       const Eigen::VectorXd step = H.ldlt().solve(-grad);
@@ -688,19 +685,7 @@ CarriedGarment carry_garment(const BodyRig& rig, const WearerFit& fit, const Tri
       if (rig.influence_bone(v, k) >= 0) W(g, rig.influence_bone(v, k)) += rig.influence_weight(v, k);
   }
   const std::vector<std::vector<int>> neighbours = mesh::vertex_neighbours(garment.F, n);
-  Eigen::MatrixXd next(n, bones);
-  for (int s = 0; s < options.smoothing_sweeps; ++s) {
-    for (int v = 0; v < n; ++v) {
-      if (neighbours[v].empty()) {
-        next.row(v) = W.row(v);
-        continue;
-      }
-      Eigen::RowVectorXd mean = Eigen::RowVectorXd::Zero(bones);
-      for (int w : neighbours[v]) mean += W.row(w);
-      next.row(v) = 0.5 * W.row(v) + 0.5 * mean / static_cast<double>(neighbours[v].size());
-    }
-    W.swap(next);
-  }
+  smooth_rows(W, neighbours, options.smoothing_sweeps);
   std::vector<Eigen::Matrix4d> back(static_cast<std::size_t>(bones));
   for (int b = 0; b < bones; ++b) back[b] = fit.bone_transform[b].inverse();
   CarriedGarment out;

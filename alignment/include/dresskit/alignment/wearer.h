@@ -65,9 +65,11 @@ struct WearerFitOptions {
   /// Starts of the whole body's placement tried (heights and sizes) before the articulated fit;
   /// the `starts_refined` best are refined articulated and the lowest cost kept.
   int starts_refined = 3;
-  /// Weight of the prior that keeps the body's size (log of the scale) near the body's own,
-  /// relative to the weight of all the garment's points, and of the one that keeps each bone's turn
-  /// near none, relative to the weight of the points the bone carries [unitless].
+  /// Weight of the priors that keep the body's size (log of the scale) and each bone's turn near
+  /// the body's own, relative to the data's total weight [unitless]. A limb that few of the
+  /// garment's points cover (a short sleeve) is held near the body's pose: a T-shirt made for an
+  /// A-pose turns a T-posed body's upper arms by about 34° of their 45° (a weaker turn prior lets
+  /// the legs under a skirt turn to fit the skirt).
   double scale_prior = 0.5, turn_prior = 0.2;
   double smallest_scale = 0.6, largest_scale = 1.6;  ///< the wearer's size against the body's
   /// The ease over a bone at most, in body heights [unitless]: cloth farther out (a skirt around the
