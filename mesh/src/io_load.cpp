@@ -21,6 +21,7 @@
 #include "dresskit/mesh/names.h"
 #include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
+#include "dresskit/mesh/topology.h"
 #include "internal.h"
 
 namespace dresskit::mesh {
@@ -327,10 +328,22 @@ TriangleMesh load_mesh(const std::string& path, const LoadOptions& options) {
       if (row < 0) row = static_cast<int>(tc.size()), tc.push_back(g.uvs[static_cast<size_t>(polygon[k])]);
       t[k] = row;
     }
-    if (p.size() == 4) quads.emplace_back(p[0], p[1], p[2], p[3]);
-    for (size_t k = 1; k + 1 < p.size(); ++k) {  // fan
-      tris.emplace_back(p[0], p[k], p[k + 1]);
-      tri_tc.emplace_back(t[0], t[k], t[k + 1]);
+    std::vector<Eigen::Vector3d> corners;
+    for (int v : p) corners.push_back(mesh.V.row(v).transpose());
+    const auto triangles = triangulate_polygon(corners);
+    if (p.size() == 4 && triangles.size() == 2) {
+      // A quad is kept (its diagonals are the cloth's shear springs) starting at the corner its
+      // diagonal leaves from, so that its triangles are (a, b, c) and (a, c, d) as the writers expect.
+      auto in_both = [&](int corner) {
+        return std::count(triangles[0].begin(), triangles[0].end(), corner) +
+                   std::count(triangles[1].begin(), triangles[1].end(), corner) == 2;
+      };
+      const int a = in_both(0) ? 0 : 1;
+      quads.emplace_back(p[a], p[(a + 1) % 4], p[(a + 2) % 4], p[(a + 3) % 4]);
+    }
+    for (const auto& tri : triangles) {
+      tris.emplace_back(p[tri[0]], p[tri[1]], p[tri[2]]);
+      tri_tc.emplace_back(t[tri[0]], t[tri[1]], t[tri[2]]);
     }
   }
   mesh.F.resize(static_cast<Eigen::Index>(tris.size()), 3);

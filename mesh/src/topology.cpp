@@ -202,4 +202,82 @@ std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& F, int n
   return out;
 }
 
+std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Eigen::Vector3d>& corners) {
+  const int n = static_cast<int>(corners.size());
+  std::vector<std::array<int, 3>> out;
+  if (n < 3) return out;
+  auto fan = [&] {
+    out.clear();
+    for (int k = 1; k + 1 < n; ++k) out.push_back({0, k, k + 1});
+    return out;
+  };
+  // Ear clipping costs n³ here; a polygon beyond kLargestClipped corners (no modeller writes one for
+  // a garment) is fanned so that no input can make loading slow.
+  constexpr int kLargestClipped = 256;
+  if (n == 3 || n > kLargestClipped) return fan();
+  // Newell's normal: the polygon's area vector, robust to non-planar and non-convex polygons.
+  Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+  double size = 0.0;
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector3d& a = corners[static_cast<size_t>(k)];
+    const Eigen::Vector3d& b = corners[static_cast<size_t>((k + 1) % n)];
+    normal += Eigen::Vector3d((a.y() - b.y()) * (a.z() + b.z()), (a.z() - b.z()) * (a.x() + b.x()),
+                              (a.x() - b.x()) * (a.y() + b.y()));
+    size = std::max(size, (b - a).norm());
+  }
+  if (!(normal.norm() > 1e-12 * size * size)) return fan();
+  normal.normalize();
+  const Eigen::Vector3d u = normal.unitOrthogonal(), w = normal.cross(u);
+  Eigen::Matrix2Xd p(2, n);  // the corners in the plane
+  for (int k = 0; k < n; ++k) p.col(k) << corners[static_cast<size_t>(k)].dot(u), corners[static_cast<size_t>(k)].dot(w);
+  auto cross = [&](int a, int b, int c) {
+    const Eigen::Vector2d e = p.col(b) - p.col(a), f = p.col(c) - p.col(a);
+    return e.x() * f.y() - e.y() * f.x();
+  };
+  // Twice a triangle's area below this is a straight corner (relative to the polygon's longest side).
+  const double straight = 1e-9 * size * size;
+  auto inside_or_on = [&](int v, int a, int b, int c) {  // v in the closed triangle abc (counter-clockwise)
+    return cross(a, b, v) >= -straight && cross(b, c, v) >= -straight && cross(c, a, v) >= -straight;
+  };
+  // An ear's shape: its smallest angle's sine, as 2·area / (longest side²), in [0, √3/2].
+  auto shape = [&](int a, int b, int c) {
+    const double l = std::max({(p.col(a) - p.col(b)).squaredNorm(), (p.col(b) - p.col(c)).squaredNorm(),
+                               (p.col(c) - p.col(a)).squaredNorm()});
+    return l > 0.0 ? cross(a, b, c) / l : 0.0;
+  };
+  // An ear: a corner turning the polygon's way with no other corner inside or on its triangle.
+  auto ear = [&](const std::vector<int>& ring, int a, int b, int c) {
+    if (cross(a, b, c) <= straight) return false;  // reflex or straight
+    for (int v : ring)
+      if (v != a && v != b && v != c && inside_or_on(v, a, b, c)) return false;
+    return true;
+  };
+  std::vector<int> ring(static_cast<size_t>(n));
+  std::iota(ring.begin(), ring.end(), 0);
+  // The file's own fan is kept where each of its triangles is an ear (every convex polygon), so a
+  // well-formed mesh is triangulated as its authoring tool shows it.
+  bool fan_is_fine = true;
+  for (int k = 1; k + 1 < n && fan_is_fine; ++k) fan_is_fine = ear(ring, 0, k, k + 1);
+  if (fan_is_fine) return fan();
+  while (ring.size() > 3) {
+    const int m = static_cast<int>(ring.size());
+    int best = -1;
+    double best_shape = 0.0;
+    for (int k = 0; k < m; ++k) {
+      const int a = ring[static_cast<size_t>((k + m - 1) % m)], b = ring[static_cast<size_t>(k)],
+                c = ring[static_cast<size_t>((k + 1) % m)];
+      if (!ear(ring, a, b, c)) continue;
+      const double s = shape(a, b, c);
+      if (s > best_shape) best = k, best_shape = s;
+    }
+    if (best < 0) return fan();  // self-overlapping polygon: nothing better than the file's order
+    const int a = ring[static_cast<size_t>((best + m - 1) % m)], b = ring[static_cast<size_t>(best)],
+              c = ring[static_cast<size_t>((best + 1) % m)];
+    out.push_back({a, b, c});
+    ring.erase(ring.begin() + best);
+  }
+  out.push_back({ring[0], ring[1], ring[2]});
+  return out;
+}
+
 }  // namespace dresskit::mesh

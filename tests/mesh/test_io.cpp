@@ -57,6 +57,31 @@ TEST(Io, ObjRoundTripIsExactAndKeepsQuads) {
   EXPECT_EQ(back.source_vertex, Eigen::VectorXi::LinSpaced(8, 0, 7));
 }
 
+TEST(Io, PolygonsMeetingAtATJunctionLoadManifold) {
+  // Two pentagons side by side, each with a corner halfway along the side they share and listed
+  // first from the side's end: fanned, each would add a flat triangle and an edge along that side,
+  // which four faces would then use.
+  test::TempDir dir;
+  write_text(dir.file("t.obj"),
+             "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nv 2 0 0\nv 2 2 0\n"
+             "f 2 3 4 5 1\nf 4 3 2 6 7\n");
+  const TriangleMesh m = load_mesh(dir.file("t.obj"));
+  const TopologyReport t = analyse_topology(m);
+  EXPECT_EQ(t.num_faces, 6);
+  EXPECT_EQ(t.num_non_manifold_edges, 0);
+  EXPECT_EQ(t.num_degenerate_faces, 0);
+  EXPECT_TRUE(t.manifold);
+  EXPECT_NEAR(t.area, 4.0, 1e-12);
+  // A dart-shaped quad is split along the diagonal inside it and kept as a quad from that corner.
+  write_text(dir.file("dart.obj"), "v 0 0 0\nv 1 0.3 0\nv 2 0 0\nv 1 2 0\nf 1 2 3 4\n");
+  const TriangleMesh dart = load_mesh(dir.file("dart.obj"));
+  ASSERT_EQ(dart.quads.rows(), 1);
+  EXPECT_EQ(dart.quads.row(0), Eigen::RowVector4i(1, 2, 3, 0));
+  EXPECT_NEAR(analyse_topology(dart).area, 1.7, 1e-12);
+  save_mesh(dart, dir.file("back.obj"));
+  EXPECT_EQ(load_mesh(dir.file("back.obj")).quads, dart.quads);
+}
+
 TEST(Io, PlyRoundTripKeepsOrderAndQuads) {
   test::TempDir dir;
   TriangleMesh m = fixtures::cube(1.7);

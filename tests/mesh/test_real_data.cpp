@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -15,10 +16,11 @@ using namespace dresskit;
 using namespace dresskit::mesh;
 
 namespace {
-// An independent reading of an OBJ's `v` and `f` lines (fan-triangulated, 0-based).
+// An independent reading of an OBJ's `v` and `f` lines (0-based): per triangle the loader should
+// make, in order, the corners of the polygon it comes from.
 struct PlainObj {
   std::vector<Eigen::RowVector3d> v;
-  std::vector<Eigen::RowVector3i> f;
+  std::vector<std::vector<int>> f;
 };
 PlainObj read_plain_obj(const std::string& path) {
   PlainObj obj;
@@ -36,7 +38,7 @@ PlainObj read_plain_obj(const std::string& path) {
       std::vector<int> idx;
       std::string corner;
       while (s >> corner) idx.push_back(std::stoi(corner.substr(0, corner.find('/'))) - 1);
-      for (size_t k = 1; k + 1 < idx.size(); ++k) obj.f.emplace_back(idx[0], idx[k], idx[k + 1]);
+      for (size_t k = 1; k + 1 < idx.size(); ++k) obj.f.push_back(idx);
     }
   }
   return obj;
@@ -79,12 +81,14 @@ TEST_P(ObjFile, VerticesAndFacesAreInTheFilesOwnOrder) {
   for (int i = 0; i < m.num_vertices(); ++i) {
     ASSERT_TRUE(m.V.row(i).isApprox(plain.v[i] * scale, 1e-12)) << "vertex " << i;
   }
-  // Faces: same triangles over the same vertex numbers (duplicate positions may map to the first of
-  // their `v` lines, so compare positions rather than indices).
+  // Faces: in the file's order, each triangle over corners of its polygon (duplicate positions may
+  // map to the first of their `v` lines, so compare positions rather than indices).
   ASSERT_EQ(m.num_faces(), static_cast<int>(plain.f.size()));
   for (int f = 0; f < m.num_faces(); ++f) {
     for (int k = 0; k < 3; ++k) {
-      ASSERT_EQ(m.V.row(m.F(f, k)), m.V.row(plain.f[f](k))) << "face " << f;
+      const auto& polygon = plain.f[static_cast<size_t>(f)];
+      ASSERT_TRUE(std::any_of(polygon.begin(), polygon.end(), [&](int c) { return m.V.row(m.F(f, k)) == m.V.row(c); }))
+          << "face " << f;
     }
   }
 }

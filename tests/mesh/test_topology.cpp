@@ -82,3 +82,59 @@ TEST(Topology, SplitComponentsLargestFirstAndOrientOutward) {
   EXPECT_TRUE(analyse_topology(parts[1]).outward);
   EXPECT_NEAR(analyse_topology(parts[1]).signed_volume, 1.0 / 6.0, 1e-12);
 }
+
+namespace {
+// Summed signed area (along +z) of triangles over planar corners, and whether any is flat or reversed.
+double triangulated_area(const std::vector<Eigen::Vector3d>& c, const std::vector<std::array<int, 3>>& t,
+                         bool* all_positive) {
+  double area = 0.0;
+  *all_positive = true;
+  for (const auto& f : t) {
+    const double a = 0.5 * (c[f[1]] - c[f[0]]).cross(c[f[2]] - c[f[0]]).z();
+    *all_positive = *all_positive && a > 1e-9;
+    area += a;
+  }
+  return area;
+}
+bool has_edge(const std::vector<std::array<int, 3>>& t, int a, int b) {
+  for (const auto& f : t)
+    for (int k = 0; k < 3; ++k)
+      if ((f[k] == a && f[(k + 1) % 3] == b) || (f[k] == b && f[(k + 1) % 3] == a)) return true;
+  return false;
+}
+}  // namespace
+
+TEST(Topology, TriangulatePolygonKeepsConvexFansAndClipsTheRest) {
+  bool positive = false;
+  // A convex quad: the file's fan from its first corner.
+  const std::vector<Eigen::Vector3d> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const auto fan = triangulate_polygon(square);
+  ASSERT_EQ(fan.size(), 2u);
+  EXPECT_EQ(fan[0], (std::array<int, 3>{0, 1, 2}));
+  EXPECT_EQ(fan[1], (std::array<int, 3>{0, 2, 3}));
+  // A square with a corner halfway along its first side (a T-junction): the fan would hold the flat
+  // triangle (0, 1, 2) and the diagonal 0–2 along that side.
+  const std::vector<Eigen::Vector3d> t_junction = {{0, 0, 0}, {0.5, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  const auto clipped = triangulate_polygon(t_junction);
+  ASSERT_EQ(clipped.size(), 3u);
+  EXPECT_NEAR(triangulated_area(t_junction, clipped, &positive), 1.0, 1e-12);
+  EXPECT_TRUE(positive);
+  EXPECT_FALSE(has_edge(clipped, 0, 2));
+  // A dart (reflex corner 1): the fan's diagonal 0–2 runs outside; the other diagonal is taken.
+  const std::vector<Eigen::Vector3d> dart = {{0, 0, 0}, {1, 0.3, 0}, {2, 0, 0}, {1, 2, 0}};
+  const auto dart_triangles = triangulate_polygon(dart);
+  ASSERT_EQ(dart_triangles.size(), 2u);
+  EXPECT_NEAR(triangulated_area(dart, dart_triangles, &positive), 1.7, 1e-12);
+  EXPECT_TRUE(positive);
+  EXPECT_TRUE(has_edge(dart_triangles, 1, 3));
+  // An L of six corners, the fan's corner at its reflex side, turned in space: area 3, none reversed.
+  std::vector<Eigen::Vector3d> ell = {{1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}};
+  const auto ell_triangles = triangulate_polygon(ell);
+  ASSERT_EQ(ell_triangles.size(), 4u);
+  EXPECT_NEAR(triangulated_area(ell, ell_triangles, &positive), 3.0, 1e-12);
+  EXPECT_TRUE(positive);
+  const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  std::vector<Eigen::Vector3d> turned;
+  for (const auto& c : ell) turned.push_back(turn * c + Eigen::Vector3d(5, -2, 9));
+  EXPECT_EQ(triangulate_polygon(turned), ell_triangles);
+}

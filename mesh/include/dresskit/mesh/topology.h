@@ -2,6 +2,7 @@
 // Topology and geometry facts about a triangle soup. Written on the index arrays, not on CGAL's
 // halfedge structures, because it must describe any input, including the non-manifold ones that a
 // halfedge structure cannot even hold.
+#include <array>
 #include <vector>
 
 #include "dresskit/mesh/triangle_mesh.h"
@@ -40,6 +41,15 @@ std::vector<std::vector<int>> vertex_neighbours(const Eigen::MatrixX3i& F, int n
 
 /// One mesh per connected component, largest (most faces) first, with every attribute carried along.
 std::vector<TriangleMesh> split_components(const TriangleMesh& mesh);
+
+/// Triangles covering one polygon face, as indices into `corners` (its corners in order), keeping
+/// the polygon's winding. Ear clipping in the plane of the polygon's Newell normal, the best-shaped
+/// ear first: a corner on the straight line between its neighbours (where a side of a neighbouring
+/// polygon meets this one, a T-junction) is never an ear's tip and no ear may have a corner on its
+/// sides, so no triangle has zero area and no diagonal repeats a side of the polygon (a fan from
+/// the first corner would do both, and make that side's edge non-manifold). A polygon of no area is
+/// fanned, and so is one of more than 256 corners.
+std::vector<std::array<int, 3>> triangulate_polygon(const std::vector<Eigen::Vector3d>& corners);
 
 /// Reverses the faces of every closed component whose signed volume is negative, so closed components
 /// face outwards. Returns the number of faces flipped.
