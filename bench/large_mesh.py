@@ -1,11 +1,14 @@
 #!/usr/bin/env python3
-"""Peak memory and time of `info`, `clean` and `segment` on a body of a million triangles or more.
+"""Peak memory and time of `info`, `clean` and `segment` on a body of a million triangles or more,
+and of `dress` given a garment beyond its size bound.
 
 Splits every triangle of a shared body into k² (k = 5 on gc_mean_all: 1,187,500 triangles; edge
 points shared, so the result is as closed as the body), writes it as OBJ in a temporary folder and
-runs each command once under /usr/bin/time, reading its wall time and peak resident memory.
+runs each command once under /usr/bin/time, reading its wall time and peak resident memory. The
+garment (k = 8 on the man's casualsuit02: about 270,000 triangles) is dressed on the shared man.
 
-  bench/large_mesh.py OUT.csv [--body PATH] [--k 5] [--tool build/bin/dress-a-mesh]
+  bench/large_mesh.py OUT.csv [--body PATH] [--k 5] [--garment PATH] [--garment-k 8]
+                      [--tool build/bin/dress-a-mesh]
 """
 import argparse
 import csv
@@ -99,8 +102,12 @@ def main():
     data = os.environ.get('DRESSKIT_DATA_DIR', os.path.join(root, '..', 'shared', 'data'))
     ap.add_argument('--body', default=os.path.join(data, 'bodies', 'gc_mean_all.obj'))
     ap.add_argument('--k', type=int, default=5)
+    ap.add_argument('--garment', default=os.path.join(data, 'garments', 'mh_male_casualsuit02.obj'))
+    ap.add_argument('--garment-k', type=int, default=8)
+    ap.add_argument('--garment-body', default=os.path.join(data, 'bodies', 'mh_man_young_average.obj'))
     ap.add_argument('--tool', default=os.path.join(root, 'build', 'bin', 'dress-a-mesh'))
     args = ap.parse_args()
+    GV, GF = subdivide(*read_obj(args.garment), args.garment_k)
     V, F = read_obj(args.body)
     t0 = time.time()
     V, F = subdivide(V, F, args.k)
@@ -109,13 +116,19 @@ def main():
         write_obj(body, V, F)
         print('%s split %d × %d: %d vertices, %d triangles (%.1f s)' %
               (os.path.basename(args.body), args.k, args.k, len(V), len(F), time.time() - t0))
-        runs = [('info', [args.tool, 'info', body]),
-                ('clean', [args.tool, 'clean', body, '-o', os.path.join(tmp, 'clean.obj')]),
-                ('segment', [args.tool, 'segment', body, '-o', os.path.join(tmp, 'segment')])]
+        garment = os.path.join(tmp, 'garment.obj')
+        write_obj(garment, GV, GF)
+        print('%s split %d × %d: %d vertices, %d triangles' %
+              (os.path.basename(args.garment), args.garment_k, args.garment_k, len(GV), len(GF)))
+        runs = [('info', [args.tool, 'info', body], F, V),
+                ('clean', [args.tool, 'clean', body, '-o', os.path.join(tmp, 'clean.obj')], F, V),
+                ('segment', [args.tool, 'segment', body, '-o', os.path.join(tmp, 'segment')], F, V),
+                ('dress (garment)', [args.tool, 'dress', args.garment_body, garment, '--units', 'dm',
+                                     '-o', os.path.join(tmp, 'dress')], GF, GV)]
         rows = []
-        for name, cmd in runs:
+        for name, cmd, faces, vertices in runs:
             code, wall, mb = timed(cmd)
-            rows.append({'command': name, 'triangles': len(F), 'vertices': len(V), 'exit_code': code,
+            rows.append({'command': name, 'triangles': len(faces), 'vertices': len(vertices), 'exit_code': code,
                          'wall_seconds': wall, 'peak_rss_mb': round(mb, 1)})
             print('%-8s exit %d  %7.1f s  %8.1f MB' % (name, code, wall, mb))
     os.makedirs(os.path.dirname(os.path.abspath(args.csv)), exist_ok=True)

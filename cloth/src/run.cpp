@@ -99,6 +99,14 @@ RunResult run(ClothSimulator& sim, const RunOptions& o, const std::function<void
         break;
       }
     }
+    if (o.max_steps > 0 && result.totals.steps >= o.max_steps && sim.time() < end - eps) {
+      result.stopped_reason = "step limit reached";
+      char line[200];
+      std::snprintf(line, sizeof line, "stopped at the step limit (%d steps) after %.3g of %.3g s simulated: not at rest",
+                    o.max_steps, sim.time() - start, o.duration);
+      result.warnings.emplace_back(line);
+      break;
+    }
   }
   if (result.stopped_reason.empty()) result.stopped_reason = "duration reached";
   const StepTotals& s = result.totals;

@@ -68,9 +68,17 @@ DressResult dress(const MeshFile& body_file, const std::vector<GarmentFile>& gar
   result.quality = options.quality;
   for (const StageEntry& entry : kStages) {
     const auto begun = Clock::now();
-    const StageReport report = entry.run(outfit, options);
-    const DressStage stage{entry.name, report.ran, std::chrono::duration<double>(Clock::now() - begun).count(),
-                           report.reason};
+    auto seconds = [&] { return std::chrono::duration<double>(Clock::now() - begun).count(); };
+    StageReport report;
+    try {
+      report = entry.run(outfit, options);
+    } catch (const InputError& e) {
+      if (&entry == &kStages[0]) throw;  // the meshes could not be read: nothing was tried
+      result.stages.push_back(DressStage{entry.name, true, seconds(), e.what()});
+      result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      throw DressRefused(e.what(), std::move(result));
+    }
+    const DressStage stage{entry.name, report.ran, seconds(), report.reason};
     result.stages.push_back(stage);
     if (options.on_stage) options.on_stage(stage);
   }

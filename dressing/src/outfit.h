@@ -55,6 +55,8 @@ struct Outfit {
   /// padding runs as long, with the same options).
   cloth::SimulationOptions settled_with;
   double settle_duration = 0.0;
+  /// Steps at most for that time (DressOptions::settle_step_budget × settle_duration / dt; 0: no bound).
+  int settle_max_steps = 0;
 
  private:
   std::shared_ptr<const cloth::MeshDistance> body_distance_;

@@ -297,12 +297,14 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& r,
   return text;
 }
 
-void write_dress_failure_page(const std::string& folder, const DressResult& r, const DressOutputOptions& options) {
+void write_dress_failure_page(const std::string& folder, const DressResult& r, const DressOutputOptions& options,
+                              const std::string& refused) {
   const bool padding = r.settle.ok && r.padding_ran && !r.padding_settle.ok;  // the padding's run failed
   const cloth::RunResult& run = padding ? r.padding_settle : r.settle;
-  const std::string failure = std::string(padding ? "padding" : "settling") + " stopped after " +
-                              std::to_string(run.totals.steps) + " steps: " +
-                              (run.failure.empty() ? run.stopped_reason : run.failure);
+  const std::string failure = !refused.empty() ? "refused at " + r.stages.back().name + ": " + refused
+                              : std::string(padding ? "padding" : "settling") + " stopped after " +
+                                    std::to_string(run.totals.steps) + " steps: " +
+                                    (run.failure.empty() ? run.stopped_reason : run.failure);
   ReportPage page = detail::dress_page(r, options.command, failure);
   json report = report_with_extra(r, options);
   report["stages"] = stages_json(r);

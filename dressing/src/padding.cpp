@@ -120,7 +120,7 @@ Eigen::MatrixX3i faces_within(const Eigen::MatrixX3i& F, int lo, int hi) {
 }  // namespace
 
 PaddingRun pad_garments(std::vector<DressedGarment>& garments, const std::vector<Fabric>& fabrics, const MeshDistance& body,
-                        const SimulationOptions& options, double separation, double seconds,
+                        const SimulationOptions& options, double separation, double seconds, int max_steps,
                         const std::vector<std::vector<int>>& belt, const std::function<void(double, double)>& on_settle) {
   const std::size_t n = garments.size();
   std::vector<ClothModel> sheets(n);
@@ -248,6 +248,7 @@ PaddingRun pad_garments(std::vector<DressedGarment>& garments, const std::vector
   held.erase(std::unique(held.begin(), held.end()), held.end());
   RunOptions r;
   r.duration = seconds;
+  r.max_steps = max_steps;
   // Steps held below 1/256 of the full one (the length limits, the body and what lies over the
   // padding not all holding) count as stalled: the padding is kept where it got to, rather than
   // settled for hours of such steps.

@@ -23,11 +23,12 @@ struct PaddingRun {
 /// set): sets dressed (inner shell), dressed_outer and the padding figures. Garments are stacked
 /// `separation` apart [m] as when they settled; belt: their held vertices (mesh indices, per
 /// garment). A padded garment's inner shell stays where it settled but where it lies over padding
-/// (which pushes it out); the run lasts at most `seconds` and stops at rest. A run that stalls
-/// keeps its last state (crossing nothing; the padding not grown everywhere).
+/// (which pushes it out); the run lasts at most `seconds` and `max_steps` steps (0: no bound) and
+/// stops at rest. A run that stalls keeps its last state (crossing nothing; the padding not grown
+/// everywhere).
 PaddingRun pad_garments(std::vector<DressedGarment>& garments, const std::vector<cloth::Fabric>& fabrics,
                         const cloth::MeshDistance& body, const cloth::SimulationOptions& options,
-                        double separation, double seconds, const std::vector<std::vector<int>>& belt,
+                        double separation, double seconds, int max_steps, const std::vector<std::vector<int>>& belt,
                         const std::function<void(double, double)>& on_settle);
 
 }  // namespace dresskit::dressing::detail

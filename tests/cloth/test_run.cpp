@@ -45,6 +45,31 @@ TEST(Run, StopsWhenTheClothIsAtRestAndSaysWhy) {
   EXPECT_GE(all.time(), 1.0 - 1e-9);
 }
 
+// A run bounded by steps stops at the bound, keeps its state and says how far it got; one that ends
+// by its duration on the bound's last step has not been cut short.
+TEST(Run, StopsAtTheStepLimitAndSaysHowFarItGot) {
+  SimulationOptions o;
+  o.adaptive = false;
+  o.colliders.push_back(Collider::plane({0, 0, 0}, {0, 1, 0}));
+  RunOptions r;
+  r.duration = 1.0;
+  r.max_steps = 7;
+  ClothSimulator sim(square(0.3, 12, {0, 0.05, 0}), o);
+  const RunResult result = run(sim, r);
+  ASSERT_TRUE(result.ok) << result.failure;
+  EXPECT_EQ(result.stopped_reason, "step limit reached");
+  EXPECT_EQ(result.totals.steps, 7);
+  EXPECT_NEAR(sim.time(), 7 * o.dt, 1e-12);
+  ASSERT_EQ(result.warnings.size(), 1u);
+  EXPECT_NE(result.warnings[0].find("step limit (7 steps) after 0.0583 of 1 s simulated"), std::string::npos)
+      << result.warnings[0];
+  r.duration = 7 * o.dt;
+  ClothSimulator exact(square(0.3, 12, {0, 0.05, 0}), o);
+  const RunResult whole = run(exact, r);
+  EXPECT_EQ(whole.stopped_reason, "duration reached");
+  EXPECT_TRUE(whole.warnings.empty());
+}
+
 // A horizontal square hinged at two corners of one edge swings down. With springs 10⁴ times stiffer
 // than a real fabric's, projective dynamics' iterations stop moving at once while gravity is still
 // unbalanced, and the run "comes to rest" in mid-air: it must say so in a warning. The real fabric

@@ -553,6 +553,29 @@ TEST(Dress, BadInputNamesTheFileAndWhatIsWrong) {
   const std::string tall = message(in_units(body_path("mh_woman_young_average"), "m"), garment);
   EXPECT_NE(tall.find("mh_woman_young_average.obj"), std::string::npos) << tall;
   EXPECT_NE(tall.find("--body-units dm"), std::string::npos) << tall;
+  // Refused by a stage after the meshes were read: the result so far comes with the refusal, its
+  // stages ending with the one that refused, for the page that shows what was tried.
+  try {
+    dress(in_units(body_path("mh_woman_young_average"), "m"), {garment}, o);
+    ADD_FAILURE() << "not refused";
+  } catch (const DressRefused& e) {
+    const std::vector<DressStage>& stages = e.result().stages;
+    ASSERT_EQ(stages.size(), 3u);
+    EXPECT_EQ(stages[0].name, "load");
+    EXPECT_EQ(stages.back().name, "units");
+    EXPECT_EQ(stages.back().reason, tall);
+    EXPECT_EQ(e.result().body.num_vertices(), 13380);
+  }
+  // A file that cannot be read is not: nothing was tried.
+  EXPECT_THROW(
+      {
+        try {
+          dress(in_units("/nonexistent/body.obj", "dm"), {garment}, o);
+        } catch (const DressRefused&) {
+          ADD_FAILURE() << "a load error came as a refusal";
+        }
+      },
+      InputError);
   // Both in metres as read: one --units for both.
   const std::string both = message(in_units(body_path("mh_woman_young_average"), "m"),
                                    {in_units(outfit_path("female_casualsuit01"), "m"), ""});

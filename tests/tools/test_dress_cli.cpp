@@ -1,7 +1,9 @@
 // dress-a-mesh dress end to end: the outputs and the report of a run with only the meshes and their
-// units, and bad input (exit 2, one error line naming the file or option, nothing written).
+// units, and bad input (exit 2, one error line naming the file or option; nothing written, or
+// report.html alone where a stage refused).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -61,6 +63,19 @@ TEST(DressCli, WritesTheDressedOutfitAndAReportOfEveryStage) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("out/dressed.glb")));
 }
 
+namespace {
+// The names in a run's output folder, hidden ones left out, sorted.
+std::vector<std::string> written(const std::string& folder) {
+  std::vector<std::string> names;
+  for (const auto& e : std::filesystem::directory_iterator(folder))
+    if (e.path().filename().string()[0] != '.') names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+}  // namespace
+
+// Bad input refused before any work writes nothing; one that a stage refuses after reading the
+// meshes writes report.html alone, showing what was tried, and says so on its line.
 TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   DRESSKIT_REQUIRE_DATA();
   test::TempDir dir;
@@ -72,7 +87,8 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_EQ(r.err.rfind("dress-a-mesh: "), r.err.rfind('\n', r.err.size() - 2) + 1) << r.err;
   EXPECT_NE(r.err.find("mh_girl_child_11y.obj"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--body-units dm"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("a")));
+  EXPECT_NE(r.err.find("(only " + dir.file("a") + "/report.html written: what was tried)\n"), std::string::npos) << r.err;
+  EXPECT_EQ(written(dir.file("a")), std::vector<std::string>{"report.html"});
   r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --layers sideways -o " + dir.file("b"));
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--layers"), std::string::npos) << r.err;
@@ -98,7 +114,7 @@ TEST(DressCli, BadInputExits2WithOneLineAndNoOutput) {
   EXPECT_NE(r.err.find("mh_man_young_average.obj: its largest piece (26756 faces) is closed, with no opening"),
             std::string::npos)
       << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("d")));
+  EXPECT_EQ(written(dir.file("d")), std::vector<std::string>{"report.html"});
   // A bad unit is named with the option that gave it.
   r = run(dir, "dress " + data(kChild) + " " + data(kOutfit) + " --units dm --garment-units furlongs -o " +
                    dir.file("e"));

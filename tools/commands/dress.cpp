@@ -130,20 +130,21 @@ void show_progress(const std::string& command, DressOptions& options, Progress& 
 }
 
 std::string write_failure_page(const std::string& dir, const DressResult& r, const std::string& command,
-                               const std::vector<std::string>& inputs) {
+                               const std::vector<std::string>& inputs, const std::string& refused) {
   try {
     write_folder(
         dir,
         [&](const fs::path& folder) {
           DressOutputOptions o;
           o.command = command;
-          write_dress_failure_page(folder.string(), r, o);
+          write_dress_failure_page(folder.string(), r, o, refused);
         },
         inputs);
   } catch (const std::exception& e) {
     return std::string("nothing written: ") + e.what();
   }
-  return "only " + (fs::path(dir) / "report.html").string() + " written: what failed and the last good state";
+  return "only " + (fs::path(dir) / "report.html").string() + " written: " +
+         (refused.empty() ? "what failed and the last good state" : "what was tried");
 }
 
 int DressCommand::run() {
@@ -198,7 +199,13 @@ int DressCommand::run() {
   options.infer_layers = layers == "inferred";
   Progress progress("settle", 1.0, "s simulated");
   show_progress("dress", options, progress);
-  DressResult r = dress(body_file, garment_files, options);
+  DressResult r;
+  try {
+    r = dress(body_file, garment_files, options);
+  } catch (const DressRefused& e) {
+    progress.finish();
+    throw InputError(std::string(e.what()) + " (" + write_failure_page(dir, e.result(), "dress", inputs, e.what()) + ")");
+  }
   progress.finish();
   for (const DressedGarment& g : r.garments)
     for (const std::string& w : g.pattern.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
@@ -210,6 +217,7 @@ int DressCommand::run() {
     return static_cast<int>(ExitCode::simulation_failed);
   }
   for (const std::string& w : r.settle.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
+  for (const std::string& w : r.padding_settle.warnings) std::cerr << "dress-a-mesh: warning: padding " << w << "\n";
   for (const std::string& w : r.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";
   for (const DressedGarment& g : r.garments)
     for (const std::string& w : g.warnings) std::cerr << "dress-a-mesh: warning: " << w << "\n";

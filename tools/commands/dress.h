@@ -28,10 +28,11 @@ struct DressCommand : Command {
 /// progress bar while settling (only on a terminal).
 void show_progress(const std::string& command, dressing::DressOptions& options, Progress& progress);
 
-/// For a run whose settling failed: writes DIR/report.html alone (what failed, the garments placed
-/// and at the last good state) as the run's outputs (write_folder). Returns what was written, for
-/// the error line; a page that cannot be written is said there, not thrown.
+/// For a run whose settling failed, or that a stage refused (`refused`: its line): writes
+/// DIR/report.html alone (what failed, what the stages made) as the run's outputs (write_folder).
+/// Returns what was written, for the error line; a page that cannot be written is said there, not
+/// thrown.
 std::string write_failure_page(const std::string& dir, const dressing::DressResult& result, const std::string& command,
-                               const std::vector<std::string>& inputs = {});
+                               const std::vector<std::string>& inputs = {}, const std::string& refused = "");
 
 }  // namespace dresskit::cli

@@ -33,7 +33,7 @@ StageReport padding(Outfit& outfit, const DressOptions& options) {
     }
     o.max_strain_change = factor * allowed;
     p = pad_garments(garments, outfit.fabrics, *outfit.body_distance(), o, outfit.separation, outfit.settle_duration,
-                     outfit.waistbands, options.on_settle);
+                     outfit.settle_max_steps, outfit.waistbands, options.on_settle);
     if (!p.run.stalled) break;
   }
   result.padding_ran = true;

@@ -4,6 +4,7 @@
 // retry says when it is tried and what it changes; a retry after a failure is kept when it settles,
 // any other when it settles and leaves fewer crossings of the garments' own than the run kept.
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 #include <optional>
 
@@ -95,6 +96,9 @@ class Settler {
     };
     RunOptions run_options;
     run_options.duration = duration_;
+    // The step budget is counted in the nominal steps of the first settle's dt: a safer retry's
+    // shorter steps spend it faster, as they should (the limit is on work, not on simulated time).
+    run_options.max_steps = outfit_.settle_max_steps;
     double next_sample = 0.0;
     r.run = cloth::run(sim, run_options, {}, [&](const StepResult& step) {
       if (step.ok && sim.time() >= next_sample) {
@@ -225,6 +229,8 @@ StageReport settle(Outfit& outfit, const DressOptions& options) {
       std::any_of(garments.begin(), garments.end(), [](const DressedGarment& g) { return g.from_pattern; });
   outfit.settled_with = setup.simulation;
   outfit.settle_duration = duration;
+  if (options.settle_step_budget > 0.0)
+    outfit.settle_max_steps = static_cast<int>(std::ceil(options.settle_step_budget * duration / setup.simulation.dt));
   if (!options.settle) return left_out("not asked for");
 
   std::vector<ClothModel> models;

@@ -38,6 +38,10 @@ struct RunOptions {
   double fps = 24.0;      ///< frames per simulated second [1/s]
   RestOptions rest;
   StallOptions stall;
+  /// Steps at most (0: no bound). A run that reaches it stops with its state kept, stopped_reason
+  /// "step limit reached" and a warning saying how far it got: a bound that follows from the run
+  /// (callers give a multiple of duration / dt), so that no input makes a run take hours of steps.
+  int max_steps = 0;
   /// Optional check after every step (after on_step): a non-empty answer fails the run with it as
   /// the reason (a bench's energy bound, a caller's own limit).
   std::function<std::string()> fail_if;
@@ -62,7 +66,8 @@ struct StepTotals {
 
 struct RunResult {
   bool ok = true;              ///< false: a step failed (the simulator keeps the last good state)
-  std::string stopped_reason;  ///< "at rest", "duration reached", "stalled: <why>" or "failed: <why>"
+  /// "at rest", "duration reached", "step limit reached", "stalled: <why>" or "failed: <why>"
+  std::string stopped_reason;
   bool stalled = false;        ///< stopped for its steps staying near the smallest (StallOptions)
   std::string failure;         ///< the failed step's reason (empty when ok)
   int frames = 0;              ///< frames handed out after the first (frame 0 is the start)

@@ -17,6 +17,7 @@
 #include "dresskit/alignment/placement.h"
 #include "dresskit/alignment/wearer.h"
 #include "dresskit/cloth/run.h"
+#include "dresskit/mesh/errors.h"
 #include "dresskit/mesh/io.h"
 #include "dresskit/segmentation/segment.h"
 #include "dresskit/thickness/thickness.h"
@@ -74,6 +75,11 @@ struct DressOptions {
   bool settle = true;  ///< false: stop after placement (dressed = placed)
   /// Simulated time settling takes at most [s]; 0 = the quality's (0.5, 1 or 2 s).
   double settle_seconds = 0.0;
+  /// Steps a settle (and the padding's growth) takes at most, as a multiple of its nominal steps
+  /// (simulated time / the simulator's dt): where the adaptive step stays short (cloth pressed
+  /// between the body and other cloth) the run stops there, keeps what it reached and says so in a
+  /// warning, rather than taking hours of steps (0: no bound) [unitless].
+  double settle_step_budget = 64.0;
   /// false: the garments are worn inside to outside in the order given; true: the order is
   /// inferred from their kinds (bottoms under tops; of one kind, the one lying farther from the body
   /// where both already lie on it, else the larger surface outside).
@@ -279,11 +285,25 @@ struct DressResult {
   double seconds = 0.0;  ///< the whole run, wall-clock
 };
 
+/// A refusal by a stage after the meshes were read (a body of implausible height, a garment that is
+/// not one for a person or that no fit places): the one line, and the result as far as the stages
+/// got (`stages` ends with the one that refused, its reason the line), so that a caller can show
+/// what was tried.
+class DressRefused : public InputError {
+ public:
+  DressRefused(const std::string& line, DressResult so_far) : InputError(line), result_(std::move(so_far)) {}
+  const DressResult& result() const { return result_; }
+
+ private:
+  DressResult result_;
+};
+
 /// Dresses the body in the garments, given inside to outside. Throws InputError naming the file
-/// and the problem: an unreadable file, a body of implausible height for its units (with the units
-/// that would fit), a mesh with no arms or legs given as the body, a garment that matches no body
-/// part or that the placement could not fit, an unknown fabric, two garments of one name, a mesh
-/// given in memory that is broken (empty, indices out of range, non-finite, labels out of range).
+/// and the problem: an unreadable file, a mesh given in memory that is broken (empty, indices out
+/// of range, non-finite, labels out of range), an unknown fabric, two garments of one name; and
+/// DressRefused (an InputError) when a later stage refuses: a body of implausible height for its
+/// units (with the units that would fit), a mesh with no arms or legs given as the body, a garment
+/// that is not one for a person or that the placement could not fit.
 DressResult dress(const MeshFile& body, const std::vector<GarmentFile>& garments, const DressOptions& options = {});
 
 }  // namespace dresskit::dressing

@@ -29,11 +29,12 @@ std::string write_dress_outputs(const std::string& folder, const DressResult& re
                                 const DressOutputOptions& options = {});
 
 /// For a run whose settling or padding failed (result.settle.ok or padding_settle.ok false, the
-/// padding not merely stalled): writes report.html alone into `folder`
-/// (which must exist), saying what failed and showing the garments placed and at the last good
-/// state settling reached, with the report's figures (its JSON included, not written). Throws
-/// OutputError naming the file that cannot be written.
+/// padding not merely stalled), or that a stage refused (`refused`: its line; DressRefused):
+/// writes report.html alone into `folder` (which must exist), saying what failed and showing what
+/// the stages made (the garments placed and at the last good state settling reached), with the
+/// report's figures (its JSON included, not written). Throws OutputError naming the file that
+/// cannot be written.
 void write_dress_failure_page(const std::string& folder, const DressResult& result,
-                              const DressOutputOptions& options = {});
+                              const DressOutputOptions& options = {}, const std::string& refused = "");
 
 }  // namespace dresskit::dressing
