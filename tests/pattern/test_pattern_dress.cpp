@@ -371,7 +371,7 @@ TEST(PatternDressCli, APatternsOutputsAreInTheBodysUnits) {
 }
 
 // A pattern whose panels are placed two metres beside the body sews shut in the air: the garment is
-// not on the body, and the pattern is refused as placed for another body (exit 2, nothing written).
+// not on the body, and the pattern is refused as placed for another body (exit 2, report.html alone).
 TEST(PatternDressCli, APatternPlacedForAnotherBodyIsRefused) {
   DRESSKIT_REQUIRE_DATA();
   using namespace test::cli;
@@ -392,7 +392,12 @@ TEST(PatternDressCli, APatternPlacedForAnotherBodyIsRefused) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("the pattern is placed for another body"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+  // Refused by placement, after the pattern was sewn: report.html alone shows what was tried.
+  EXPECT_NE(r.err.find("(only " + dir.file("out") + "/report.html written: what was tried)"), std::string::npos) << r.err;
+  std::vector<std::string> written;
+  for (const auto& e : std::filesystem::directory_iterator(dir.file("out")))
+    if (e.path().filename().string()[0] != '.') written.push_back(e.path().filename().string());
+  EXPECT_EQ(written, std::vector<std::string>{"report.html"});
 }
 
 // A pattern's body that is missing, or whose units make it 17 m tall: exit 2, one line naming the
