@@ -1,6 +1,9 @@
 #include "garments.h"
 
+#include <Eigen/SparseCholesky>
+
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -100,11 +103,74 @@ std::vector<std::string> dressed_warnings(const DressedGarment& g, const std::st
   return w;
 }
 
-/// The garment's rest shape for settling: as made, graded by the placement's size change.
 TriangleMesh rest_shape(const DressedGarment& g) {
   TriangleMesh rest = g.mesh;
-  if (g.placed_by_placement) rest.V *= g.placement.global_scale;
+  if (g.rest.rows() == rest.V.rows()) rest.V = g.rest;
   return rest;
+}
+
+Eigen::MatrixX3d loosened_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& placed,
+                               double strain_limit, double largest, int* grown) {
+  const Eigen::Index n = rest.rows();
+  const std::vector<std::vector<int>> neighbours = vertex_neighbours(F, static_cast<int>(n));
+  std::vector<std::array<int, 2>> edges;
+  std::vector<double> growth;  // each edge's rest vector's scale
+  // An edge's placed length over the longest the limit allows it at positions x.
+  const auto over = [&](const Eigen::MatrixX3d& x, std::size_t e) {
+    const auto [a, b] = edges[e];
+    return (placed.row(a) - placed.row(b)).norm() / ((1.0 + strain_limit) * (x.row(a) - x.row(b)).norm());
+  };
+  for (Eigen::Index a = 0; a < n; ++a)
+    for (int b : neighbours[static_cast<std::size_t>(a)])
+      if (b > a && (rest.row(a) - rest.row(b)).norm() > 0.0) edges.push_back({static_cast<int>(a), b});
+  int stretched = 0;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    growth.push_back(std::clamp(over(rest, e), 1.0, largest));
+    stretched += growth.back() > 1.0;
+  }
+  if (grown) *grown = stretched;
+  if (stretched == 0) return rest;
+  // Normal equations of Σ_e w_e |(x_a − x_b) − s_e (r_a − r_b)|² + ε Σ_v |x_v − r_v|²: the grown
+  // edge vectors with weights w_e = 1 / L0² (each edge's relative change counts alike); the tiny
+  // ε keeps each piece where it was.
+  std::vector<Eigen::Triplet<double>> triplets;
+  std::vector<double> w(edges.size());
+  double h = 0.0;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto [a, b] = edges[e];
+    const double L0 = (rest.row(a) - rest.row(b)).norm();
+    w[e] = 1.0 / (L0 * L0);
+    triplets.emplace_back(a, a, w[e]);
+    triplets.emplace_back(b, b, w[e]);
+    triplets.emplace_back(a, b, -w[e]);
+    triplets.emplace_back(b, a, -w[e]);
+    h += L0 / static_cast<double>(edges.size());
+  }
+  const double anchor = 1e-6 / (h * h);
+  for (Eigen::Index v = 0; v < n; ++v) triplets.emplace_back(v, v, anchor);
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  if (solver.info() != Eigen::Success) return rest;
+  // A grown edge shares its vertices with edges that are not (a ring's diagonals), so the least-
+  // squares shape grows it less than asked: the edges still over the limit are asked for more, a
+  // few times, never beyond `largest`.
+  Eigen::MatrixX3d x = rest;
+  for (int round = 0; round < 4; ++round) {
+    Eigen::MatrixX3d rhs = anchor * rest;
+    for (std::size_t e = 0; e < edges.size(); ++e) {
+      const auto [a, b] = edges[e];
+      const Eigen::RowVector3d g = w[e] * growth[e] * (rest.row(a) - rest.row(b));
+      rhs.row(a) += g;
+      rhs.row(b) -= g;
+    }
+    const Eigen::MatrixX3d next = solver.solve(rhs);
+    if (!next.allFinite()) break;
+    x = next;
+    for (std::size_t e = 0; e < edges.size(); ++e)
+      if (growth[e] > 1.0) growth[e] = std::min(largest, growth[e] * std::max(1.0, over(x, e)));
+  }
+  return x;
 }
 
 cloth::ClothModel garment_cloth(const DressedGarment& g, const cloth::Fabric& fabric) {

@@ -12,8 +12,18 @@
 
 namespace dresskit::dressing::detail {
 
-/// The garment's rest shape for settling: as made, graded by the placement's size change.
+/// The garment's rest shape for settling: DressedGarment::rest where placement set one, else as made.
 mesh::TriangleMesh rest_shape(const DressedGarment& g);
+
+/// A rest shape, for a garment of rest positions `rest` and faces F, that positions `placed` stretch
+/// by at most (1 + strain_limit) where that needs no edge to grow more than `largest` times: each
+/// edge's rest vector grown by its placed length over (1 + strain_limit) × its rest length, between
+/// 1 and `largest`, and the positions whose edges best match the grown vectors (least squares,
+/// each edge's relative change weighted alike). Edges the placement does not stretch keep their
+/// lengths, so the garment grows only where the body is larger than its wearer. `grown`: the
+/// number of edges given a growth. Returns `rest` when none is stretched.
+Eigen::MatrixX3d loosened_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& placed,
+                               double strain_limit, double largest, int* grown = nullptr);
 
 /// The garment's cloth for settling: built from its rest shape in its fabric; a sewn pattern's
 /// stretch springs take the flat pattern's lengths (the sewing strains the fabric; the garment's

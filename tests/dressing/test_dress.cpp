@@ -93,7 +93,7 @@ TEST(Dress, CasualsuitOnTheChildWithoutLabelFiles) {
   EXPECT_LE(g.max_strain_dressed, 0.5);
   EXPECT_LT(g.strain_p99_dressed, 0.13);
   TriangleMesh rest = g.mesh;
-  rest.V *= g.placement.global_scale;
+  rest.V = g.rest;
   const ClothModel model = build_cloth(rest, fabric_by_name(g.fabric));
   int over = 0, structural = 0;
   for (int k = 0; k < model.springs.size(); ++k) {
@@ -283,11 +283,9 @@ TEST(Dress, GarmentInDecimetresOnABodyInMetres) {
   EXPECT_NEAR(dressed_top[jeans], placed_top[jeans], 0.005);
 }
 
-// In stiff denim the same suit, too small for this body, cannot be held apart from itself between
-// the body's legs within its length limits: settling the untangled placement stalls, and the suit
-// settles again from that placement (no more crossings than as authored) allowing larger rises in
-// strain a step, to the end of its time, nothing inside the body and no more crossings than as
-// authored.
+// In stiff denim the same suit, too small for this body across the hips and loosened only there,
+// settles to the end of its time at the first attempt: no jam to settle through, nothing inside
+// the body and no more crossings than as authored.
 TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   DRESSKIT_REQUIRE_DATA();
   const DressResult r = casualsuit_on_the_mean_body("11oz-black-denim");
@@ -296,13 +294,7 @@ TEST(Dress, StiffGarmentTooSmallForTheBodyStillSettles) {
   EXPECT_EQ(r.settle.stopped_reason, "duration reached");
   const auto settle = std::find_if(r.stages.begin(), r.stages.end(), [](const DressStage& s) { return s.name == "settle"; });
   ASSERT_NE(settle, r.stages.end());
-  EXPECT_NE(settle->reason.find("settling stalled"), std::string::npos) << settle->reason;
-  // Twice the rise a step first (and, stalled again, four times): said in the stage and the warnings.
-  EXPECT_NE(settle->reason.find("settled again allowing a rise in strain of 0.1 a step"), std::string::npos)
-      << settle->reason;
-  EXPECT_TRUE(std::any_of(r.settle.warnings.begin(), r.settle.warnings.end(), [](const std::string& w) {
-    return w.find("settled again allowing a rise in strain of 0.1 a step") != std::string::npos;
-  }));
+  EXPECT_EQ(settle->reason.find("settled again"), std::string::npos) << settle->reason;
   EXPECT_LE(g.crossings_placed, g.crossings_authored);
   EXPECT_EQ(count_intersections(g.placed, g.mesh.F), g.crossings_placed);
   EXPECT_EQ(InsideTest(r.body).count_deeper(g.dressed, 0.002), 0);

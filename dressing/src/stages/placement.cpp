@@ -19,14 +19,14 @@ using namespace dresskit::mesh;
 
 namespace {
 
-/// The share of a placed garment's edges that may stay stretched beyond the length limit when its
-/// rest shape is loosened to fit the body (scale_to_fit).
+/// A garment is refused as too small when more than this share of its carried edges would have to
+/// grow by more than kLargestLoosening to lie within the length limit (scale_to_fit).
 constexpr double kStretchedShare = 0.02;
-/// A garment whose rest shape would have to grow by more than this to fit the body is refused.
+/// The most an edge of the rest shape grows to fit the body (loosened_rest).
 constexpr double kLargestLoosening = 1.3;
 
-/// The scale of the rest shape at which all but kStretchedShare of the placed garment's edges lie
-/// within (1 + strain_limit) of their rest lengths.
+/// The growth of the rest shape that all but kStretchedShare of the placed garment's edges need to
+/// lie within (1 + strain_limit) of their rest lengths.
 double scale_to_fit(const TriangleMesh& rest, const Eigen::MatrixX3d& placed, double strain_limit) {
   std::vector<double> ratio;
   for (int f = 0; f < rest.num_faces(); ++f)
@@ -87,7 +87,7 @@ std::string place_together(Outfit& outfit, const std::vector<std::size_t>& to_pl
     g.placed = g.placement.V;
     // Its rest shape at its wearer's size, loosened where the body is larger than its wearer there
     // (a man's shirt on a woman's hips): a garment the body stretches beyond its length limit
-    // cannot settle; a looser one drapes in.
+    // cannot settle; one loosened there drapes in, and keeps its lengths elsewhere.
     const double strain_limit = cloth::SimulationOptions().strain_limit;
     const double loose = scale_to_fit(g.mesh, g.placed, strain_limit);
     if (loose > kLargestLoosening / fit.scale)
@@ -95,9 +95,11 @@ std::string place_together(Outfit& outfit, const std::vector<std::size_t>& to_pl
                        number(100.0 * kStretchedShare) + " % of its edges would have to grow by " +
                        number(loose * fit.scale, 3) + " times or more (at most " + number(kLargestLoosening) +
                        "): not a garment for a person of this size");
-    g.placement.global_scale = std::max(1.0 / fit.scale, loose);
-    report += (report.empty() ? "" : ", ") + g.name + " at scale " + number(g.placement.global_scale) +
-              (loose > 1.0 / fit.scale ? " (its wearer's " + number(1.0 / fit.scale, 4) + ", loosened to fit the body)" : "");
+    g.placement.global_scale = 1.0 / fit.scale;
+    int grown = 0;
+    g.rest = loosened_rest(g.mesh.V * g.placement.global_scale, g.mesh.F, g.placed, strain_limit, kLargestLoosening, &grown);
+    report += (report.empty() ? "" : ", ") + g.name + " at its wearer's scale " + number(g.placement.global_scale, 4) +
+              (grown > 0 ? " (loosened where the body is larger: " + counted(grown, "edge", "edges") + " grown)" : "");
   }
   return std::string(to_place.size() > 1 ? "placed together: " : "placed: ") + report + ", " +
          counted(p.pushed_out, "vertex", "vertices") + " pushed out of the body";
@@ -114,7 +116,7 @@ void limit_to_blow_up(Outfit& outfit, std::size_t k, const DressOptions& options
   double stretch = cloth::blow_up_stretch(cloth, g.placed);
   int round = 0;
   for (; round < 10 && stretch > blow_up; ++round) {
-    alignment::limit_stretch(g.mesh, g.placement.global_scale, options.placement, g.placed);
+    alignment::limit_stretch(rest_shape(g), 1.0, options.placement, g.placed);
     stretch = cloth::blow_up_stretch(cloth, g.placed);
   }
   if (round > 0) g.crossings_placed = cloth::count_intersections(g.placed, g.mesh.F);

@@ -228,6 +228,9 @@ struct DressedGarment {
   std::optional<alignment::WearerFit> wearer;
   double carry_move = 0.0;
   Eigen::MatrixX3d placed, dressed;   ///< [m], in mesh's vertex order
+  /// The rest shape settled from, when placement carried the garment [m]: as made at its wearer's
+  /// size, loosened where the body is larger than its wearer (empty: as made).
+  Eigen::MatrixX3d rest;
   int layer = 0;                      ///< 0 = worn next to the body
   double thickness = 0.0;             ///< the cloth's own thickness from its fabric [m]
   /// Edge–triangle crossings of its own: as authored, after placement's fit (before untangling),
