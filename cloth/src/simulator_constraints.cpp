@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <queue>
 
 #include "dresskit/cloth/geometry.h"
 #include "dresskit/cloth/layers.h"
@@ -11,6 +13,12 @@
 
 namespace dresskit::cloth {
 using detail::row;
+
+namespace {
+/// limit_strain queues the springs of the active particles, rather than scanning all springs, when
+/// fewer than one particle in this many is active (a full scan is cheaper beyond).
+constexpr double kQueueShare = 8.0;
+}  // namespace
 
 void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& r, bool all, bool after_contact) {
   const SpringSet& s = model_.springs;
@@ -68,16 +76,58 @@ void ClothSimulator::limit_strain(const Eigen::MatrixX3d& x_before, StepResult& 
     return true;
   };
   const double inf = std::numeric_limits<double>::infinity();
+  const auto length_limited = [&](int k) {
+    return s.type[k] != SpringType::bending && s.type[k] != SpringType::layer_structural &&
+           s.type[k] != SpringType::layer_shear;
+  };
+  if (options_.strain_limiting && (limit_first_.size() != static_cast<std::size_t>(n) + 1 ||
+                                   limit_mark_.size() != static_cast<std::size_t>(s.size()))) {
+    limit_first_.assign(static_cast<std::size_t>(n) + 1, 0);
+    for (int k = 0; k < s.size(); ++k)
+      if (length_limited(k)) ++limit_first_[s.i[k] + 1], ++limit_first_[s.j[k] + 1];
+    for (int p = 0; p < n; ++p) limit_first_[p + 1] += limit_first_[p];
+    limit_springs_.resize(static_cast<std::size_t>(limit_first_[n]));
+    std::vector<int> fill(limit_first_.begin(), limit_first_.end() - 1);
+    for (int k = 0; k < s.size(); ++k)  // ascending spring order within each particle's list
+      if (length_limited(k)) limit_springs_[fill[s.i[k]]++] = k, limit_springs_[fill[s.j[k]]++] = k;
+    limit_mark_.assign(static_cast<std::size_t>(s.size()), -1);
+  }
+  // A sweep looks at the springs in index order, each when one of its ends is active at that
+  // moment. With few particles active (the later rounds of a step, a cloth held stretched in a few
+  // places) the springs of active particles are queued instead of scanning them all: the same
+  // springs in the same order, so the same result, for the work of the active ones.
+  std::priority_queue<int, std::vector<int>, std::greater<int>> queue;
+  int& stamp = limit_stamp_;
+  const auto enqueue_after = [&](int p, int after) {
+    for (int m = limit_first_[p]; m < limit_first_[p + 1]; ++m) {
+      const int k = limit_springs_[m];
+      if (k > after && limit_mark_[k] != stamp) limit_mark_[k] = stamp, queue.push(k);
+    }
+  };
   limit_converged_ = false;
   for (int sweep = 0; sweep < options_.strain_limit_iterations; ++sweep) {
     int violated = 0;
     if (options_.strain_limiting) {
-      for (int k = 0; k < s.size(); ++k) {
-        if (s.type[k] == SpringType::bending || s.type[k] == SpringType::layer_structural ||
-            s.type[k] == SpringType::layer_shear || !(active[s.i[k]] || active[s.j[k]]))
-          continue;
+      const auto spring = [&](int k) {
         const double L0 = s.rest_length[k];
-        violated += correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0, false, after_contact);
+        return correct(s.i[k], s.j[k], limit * L0, inf, (done - limit) * L0, false, after_contact);
+      };
+      const long active_count = std::count(active.begin(), active.end(), 1);
+      if (kQueueShare * static_cast<double>(active_count) > n) {
+        for (int k = 0; k < s.size(); ++k)
+          if (length_limited(k) && (active[s.i[k]] || active[s.j[k]])) violated += spring(k);
+      } else {
+        ++stamp;
+        for (int p = 0; p < n; ++p)
+          if (active[p]) enqueue_after(p, -1);
+        while (!queue.empty()) {
+          const int k = queue.top();
+          queue.pop();
+          if (!spring(k)) continue;
+          ++violated;
+          enqueue_after(s.i[k], k);  // its ends are active now: their later springs this sweep
+          enqueue_after(s.j[k], k);
+        }
       }
     }
     for (std::size_t m = 0; m < s.limited.size(); ++m) {

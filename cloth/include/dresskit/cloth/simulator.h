@@ -283,6 +283,10 @@ class ClothSimulator {
   Eigen::MatrixX3d contact_normal_;  ///< per particle: the normal of its last push in this step, or 0
   std::vector<char> limit_active_, limit_next_;  ///< limit_strain's active sets (work arrays)
   std::vector<char> limit_held_;  ///< limit_strain: moved by a contact pass since its last call
+  /// limit_strain: each particle's length-limited springs, ascending (CSR: the springs of particle
+  /// p are limit_springs_[limit_first_[p] .. limit_first_[p + 1])), and a per-spring mark.
+  std::vector<int> limit_first_, limit_springs_, limit_mark_;
+  int limit_stamp_ = 0;  ///< limit_strain: the mark of the current sweep's queued springs
   Eigen::MatrixX3d limit_end_;   ///< the positions at the end of the last limit_strain
   bool limit_converged_ = false;  ///< ... and whether every spring was then within its bounds
   void collide(const Eigen::MatrixX3d& x_start, StepResult& r);
