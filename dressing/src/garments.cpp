@@ -156,7 +156,8 @@ Eigen::MatrixX3d loosened_rest(const Eigen::MatrixX3d& rest, const Eigen::Matrix
   // squares shape grows it less than asked: the edges still over the limit are asked for more, a
   // few times, never beyond `largest`.
   Eigen::MatrixX3d x = rest;
-  for (int round = 0; round < 4; ++round) {
+  constexpr int kRounds = 4;
+  for (int round = 0; round < kRounds; ++round) {
     Eigen::MatrixX3d rhs = anchor * rest;
     for (std::size_t e = 0; e < edges.size(); ++e) {
       const auto [a, b] = edges[e];
@@ -167,6 +168,7 @@ Eigen::MatrixX3d loosened_rest(const Eigen::MatrixX3d& rest, const Eigen::Matrix
     const Eigen::MatrixX3d next = solver.solve(rhs);
     if (!next.allFinite()) break;
     x = next;
+    if (round + 1 == kRounds) break;
     for (std::size_t e = 0; e < edges.size(); ++e)
       if (growth[e] > 1.0) growth[e] = std::min(largest, growth[e] * std::max(1.0, over(x, e)));
   }

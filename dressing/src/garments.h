@@ -19,9 +19,10 @@ mesh::TriangleMesh rest_shape(const DressedGarment& g);
 /// by at most (1 + strain_limit) where that needs no edge to grow more than `largest` times: each
 /// edge's rest vector grown by its placed length over (1 + strain_limit) × its rest length, between
 /// 1 and `largest`, and the positions whose edges best match the grown vectors (least squares,
-/// each edge's relative change weighted alike). Edges the placement does not stretch keep their
-/// lengths, so the garment grows only where the body is larger than its wearer. `grown`: the
-/// number of edges given a growth. Returns `rest` when none is stretched.
+/// each edge's relative change weighted alike). The garment grows where the body is larger than
+/// its wearer; edges the placement does not stretch keep their lengths where the shape allows, and
+/// near a grown region take a share of its growth. `grown`: the number of edges given a growth.
+/// Returns `rest` when none is stretched.
 Eigen::MatrixX3d loosened_rest(const Eigen::MatrixX3d& rest, const Eigen::MatrixX3i& F, const Eigen::MatrixX3d& placed,
                                double strain_limit, double largest, int* grown = nullptr);
 
